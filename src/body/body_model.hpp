@@ -1,0 +1,60 @@
+// A PCA body model of the SMPL family (SMPL, SMPL+H, SMPL-X, STAR, or the embedded default
+// model) held as plain Eigen data, and its evaluation betas -> mesh. No GL here.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace body {
+
+using Vertices = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;  // V x 3, metres, y up
+using Faces = Eigen::Matrix<std::uint32_t, Eigen::Dynamic, 3, Eigen::RowMajor>;  // F x 3
+
+// Errors loading or validating a model; what() names the file, the array and the problem.
+class ModelError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Model {
+  std::string name;         // e.g. "SMPL (neutral)" or the file stem
+  std::string source;       // file path the model came from, or "<embedded default>"
+  Vertices v_template;      // V x 3
+  Eigen::MatrixXf shapedirs;  // 3V x K: row 3*v + axis, column = component (only the K kept)
+  Faces faces;              // F x 3, indices < V
+  Eigen::MatrixXf j_regressor;  // J x V (dense)
+  Eigen::MatrixXf weights;      // V x J skinning weights
+  std::vector<int> parents;     // J entries, -1 for the root
+  std::vector<std::string> joint_names;  // J entries (SMPL's names when J == 24)
+  int total_components = 0;     // K in the file before truncation to the explored count
+  Eigen::VectorXf variance_share;  // optional: share of variance of each kept component
+
+  int vertex_count() const { return static_cast<int>(v_template.rows()); }
+  int component_count() const { return static_cast<int>(shapedirs.cols()); }
+  int joint_count() const { return static_cast<int>(j_regressor.rows()); }
+};
+
+struct BodyMesh {
+  Vertices vertices;  // V x 3
+  Vertices normals;   // V x 3, unit, area-weighted vertex normals
+  Vertices joints;    // J x 3 (J_regressor * vertices)
+};
+
+// Shape coefficients; missing trailing entries are 0, extra entries are an error.
+// Evaluates v_template + shapedirs * betas, joints, normals. Throws std::invalid_argument on
+// too many or non-finite betas.
+BodyMesh evaluate(const Model& model, const Eigen::VectorXf& betas);
+
+// Translates mesh and joints so the lowest vertex touches y = 0 (feet on the ground), as
+// display and export want; returns the applied y offset.
+float place_on_ground(BodyMesh& mesh);
+
+// The paper's mapping between the search box [0,1]^K and betas: beta = 6x - 3 (+-3 sigma).
+Eigen::VectorXf betas_from_unit(const Eigen::VectorXd& x);
+Eigen::VectorXd unit_from_betas(const Eigen::VectorXf& betas);
+
+}  // namespace body

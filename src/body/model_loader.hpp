@@ -1,0 +1,23 @@
+// Loading SMPL-family models from .npz files (or bytes in memory), with validation.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "body/body_model.hpp"
+
+namespace body {
+
+// Loads and validates a model; keeps the first `components` shape components (all if the file
+// has fewer; 0 = all). Throws ModelError naming the file, the array and the problem.
+Model load_model(const std::filesystem::path& path, int components = 10);
+
+// The same from an in-memory .npz; `label` stands in for the file name in messages.
+Model load_model_from_memory(const void* data, std::size_t size, const std::string& label,
+                             int components = 10);
+
+// The embedded default body model (assets/default_body.npz compiled into the binary).
+Model load_default_model(int components = 10);
+
+}  // namespace body

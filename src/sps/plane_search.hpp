@@ -1,0 +1,88 @@
+// Sequential plane search (Koyama et al., SIGGRAPH 2020): the public API the viewer and the
+// simulate command use. Plain value type; submit() is blocking (tens of milliseconds) and the
+// object is not thread-safe, so a UI runs it on a worker thread on a copy or under a lock.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sps/plane.hpp"
+
+namespace sps {
+
+enum class Method {
+  kSps,        // the paper's plane construction (x+, x_EI, v by plane-integral EI)
+  kSpsRandom,  // c = x+, random orthogonal u, v of length 1 (paper's baseline)
+  kSls,        // sequential line search: the segment x+ -> x_EI (plane with v = 0)
+};
+
+enum class CurrentBest {
+  kPosteriorMean,  // observed point with the largest posterior mean (paper's evaluation)
+  kLastSelection,  // the user's last choice
+};
+
+struct SearchOptions {
+  int dims = 10;
+  std::uint64_t seed = 1;
+  Method method = Method::kSps;
+  CurrentBest current_best = CurrentBest::kPosteriorMean;
+  int plane_restarts = 10;   // random restarts for v (paper: 10)
+  int ei_restarts = 0;       // multi-start count for x_EI; 0 = automatic
+  int threads = 2;           // restarts run in parallel
+};
+
+class PlaneSearch {
+ public:
+  explicit PlaneSearch(const SearchOptions& options);
+
+  const SearchOptions& options() const { return options_; }
+  int dims() const { return options_.dims; }
+  int iteration() const { return static_cast<int>(history_.size()); }
+
+  // The plane (or, for SLS, the segment c -> c+u with v = 0) the user should search now.
+  const Plane& current_plane() const { return plane_; }
+
+  // The user's answer on the current plane: `chosen` is preferred over the plane's
+  // representatives c, c+-u, c+-v. `extra_rejected` adds more points the user saw and passed
+  // over (e.g. the other cells of each zoom level); each list in it is one extra comparison
+  // "its preferred point > the rest", given as {preferred, rejected...}.
+  // Recomputes the model and proposes the next plane. Points are clamped into [0,1]^n;
+  // throws std::invalid_argument on a wrong size or non-finite entries.
+  void submit(const Eigen::VectorXd& chosen,
+              const std::vector<std::vector<Eigen::VectorXd>>& extra_comparisons = {});
+
+  // Current best point (x+): the centre of the current plane.
+  Eigen::VectorXd x_plus() const { return plane_.c; }
+
+  // Posterior of the goodness model at x (0 mean / prior variance before any data).
+  double posterior_mean(const Eigen::VectorXd& x) const;
+  double posterior_variance(const Eigen::VectorXd& x) const;
+  double expected_improvement(const Eigen::VectorXd& x) const;
+
+  // Discard all preference data and start from a fresh first plane (seed advances).
+  void start_over();
+  // Remove the last submission and return to the plane it answered; false if none.
+  bool undo();
+
+  // Whole state as JSON text; from_json(to_json()) reproduces every plane and every future
+  // proposal exactly. from_json throws std::runtime_error with a readable message.
+  std::string to_json() const;
+  static PlaneSearch from_json(const std::string& json_text);
+
+  // Seconds spent inside the last submit() (absorbing the choice and proposing the plane).
+  double last_submit_seconds() const { return last_submit_seconds_; }
+
+  struct Impl;  // the fitted model and data (internal)
+
+ private:
+  struct Snapshot;
+  SearchOptions options_;
+  Plane plane_;
+  std::vector<Snapshot> history_;  // one per submission, for undo and serialization
+  double last_submit_seconds_ = 0.0;
+};
+
+}  // namespace sps
