@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs everything the build, the tool and the tests need, from Debian packages (and the
+# Khronos glTF validator from npm for the export tests). Safe to re-run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  cmake g++ make pkg-config git
+  libeigen3-dev liblbfgspp-dev catch2 nlohmann-json3-dev
+  libzip-dev libtinygltf-dev libstb-dev libglm-dev
+  libglfw3-dev libimgui-dev libepoxy-dev libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri
+  mesa-utils xvfb xauth xdotool imagemagick
+  python3-numpy nodejs npm
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The glTF validator (test tool only) lives in tests/validator/node_modules (git-ignored).
+if [ "${1:-}" = "--test" ] && [ ! -d tests/validator/node_modules/gltf-validator ]; then
+  echo "setup: installing the Khronos glTF validator from npm"
+  npm install --silent --no-audit --no-fund --prefix tests/validator gltf-validator >/dev/null
+fi
+echo "setup: ok"
