@@ -1,0 +1,45 @@
+#version 330 core
+// Soft studio lighting: a warm key light from the upper left, a cool fill from the right,
+// a rim light from behind, hemispheric ambient and a little ground occlusion near the feet.
+in vec3 v_view_position;
+in vec3 v_view_normal;
+in float v_height;
+
+uniform vec3 u_albedo;
+uniform float u_floor_y;
+
+out vec4 frag_colour;
+
+float soft_diffuse(vec3 n, vec3 l, float wrap) {
+  return max((dot(n, l) + wrap) / (1.0 + wrap), 0.0);
+}
+
+void main() {
+  vec3 n = normalize(v_view_normal);
+  vec3 to_eye = normalize(-v_view_position);
+  if (dot(n, to_eye) < 0.0) n = -n;  // open meshes: light the inside like the outside
+
+  const vec3 key_dir = normalize(vec3(-0.55, 0.65, 0.55));
+  const vec3 fill_dir = normalize(vec3(0.8, 0.1, 0.45));
+  const vec3 rim_dir = normalize(vec3(0.2, 0.35, -1.0));
+  const vec3 key_colour = vec3(1.00, 0.96, 0.90) * 0.85;
+  const vec3 fill_colour = vec3(0.70, 0.78, 0.95) * 0.35;
+  const vec3 rim_colour = vec3(0.9, 0.95, 1.0) * 0.35;
+
+  float sky = 0.5 + 0.5 * n.y;
+  vec3 ambient = mix(vec3(0.16, 0.15, 0.15), vec3(0.30, 0.32, 0.36), sky);
+  float occlusion = mix(0.55, 1.0, smoothstep(0.0, 0.25, v_height - u_floor_y));
+
+  vec3 light = ambient * occlusion;
+  light += key_colour * soft_diffuse(n, key_dir, 0.25);
+  light += fill_colour * soft_diffuse(n, fill_dir, 0.5);
+  float rim = pow(1.0 - max(dot(n, to_eye), 0.0), 3.0);
+  light += rim_colour * rim * max(dot(n, rim_dir) + 0.6, 0.0);
+
+  vec3 h = normalize(key_dir + to_eye);
+  float specular = pow(max(dot(n, h), 0.0), 32.0) * 0.12;
+
+  vec3 colour = u_albedo * light + vec3(specular);
+  colour = pow(colour, vec3(1.0 / 1.1));  // mild tone curve
+  frag_colour = vec4(clamp(colour, 0.0, 1.0), 1.0);
+}

@@ -1,0 +1,37 @@
+// Draws one body into the currently bound target: backdrop gradient, soft contact shadow on the
+// floor, then the smooth-shaded body with key/fill/rim lighting. Owns its GL programs.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "render/camera.hpp"
+#include "render/gl_handles.hpp"
+#include "render/mesh_gpu.hpp"
+
+namespace render {
+
+struct BodyStyle {
+  glm::vec3 albedo{0.80f, 0.66f, 0.56f};
+  glm::vec3 background_top{0.86f, 0.88f, 0.91f};
+  glm::vec3 background_bottom{0.60f, 0.62f, 0.66f};
+  float shadow_strength = 0.55f;
+  bool shadow = true;
+};
+
+class BodyRenderer {
+ public:
+  BodyRenderer();  // compiles the embedded shaders; needs a current GL 3.3 context
+
+  // Renders into whatever framebuffer is bound, over the viewport `width` x `height`.
+  // An empty mesh draws only the backdrop.
+  void draw(const MeshGpu& mesh, const Camera& camera, int width, int height,
+            const BodyStyle& style = {}) const;
+
+ private:
+  Program body_;
+  Program background_;
+  Program shadow_;
+  VertexArray empty_vao_;  // core profile needs a bound VAO even for attribute-less draws
+};
+
+}  // namespace render

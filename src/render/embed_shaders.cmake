@@ -1,0 +1,18 @@
+# cmake -DSHADER_DIR=... -DOUTPUT=... -P embed_shaders.cmake
+# Writes a .cpp that maps each shaders/* file name to its text (a raw string literal).
+file(GLOB shader_files RELATIVE ${SHADER_DIR} ${SHADER_DIR}/*.vert ${SHADER_DIR}/*.frag)
+list(SORT shader_files)
+set(body "// Generated from shaders/ by src/render/embed_shaders.cmake. Do not edit.\n")
+string(APPEND body "#include <map>\n#include <stdexcept>\n#include <string>\n\n")
+string(APPEND body "#include \"render/shader_sources.hpp\"\n\nnamespace render {\n\n")
+string(APPEND body "const std::string& shader_source(const std::string& name) {\n")
+string(APPEND body "  static const std::map<std::string, std::string> sources{\n")
+foreach(f ${shader_files})
+  file(READ ${SHADER_DIR}/${f} text)
+  string(APPEND body "      {\"${f}\", R\"sg_glsl(${text})sg_glsl\"},\n")
+endforeach()
+string(APPEND body "  };\n  const auto it = sources.find(name);\n")
+string(APPEND body "  if (it == sources.end()) throw std::out_of_range(\"no embedded shader \" + name);\n")
+string(APPEND body "  return it->second;\n}\n\n}  // namespace render\n")
+file(WRITE ${OUTPUT}.tmp "${body}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different ${OUTPUT}.tmp ${OUTPUT})

@@ -1,0 +1,127 @@
+// Renderer tests on a headless EGL context with a stand-in mesh (no body model needed).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "render/body_renderer.hpp"
+#include "render/camera.hpp"
+#include "render/cell_framebuffer.hpp"
+#include "render/headless_context.hpp"
+#include "render/mesh_gpu.hpp"
+#include "render/png_writer.hpp"
+#include "sphere_mesh.hpp"
+
+namespace {
+
+struct Rgb {
+  int r, g, b;
+};
+
+Rgb pixel(const std::vector<std::uint8_t>& px, int width, int x, int y) {
+  const size_t i =
+      (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4;
+  return {px[i], px[i + 1], px[i + 2]};
+}
+
+int distance(Rgb a, Rgb b) {
+  return std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b);
+}
+
+render::HeadlessContext& context() {
+  static render::HeadlessContext ctx;
+  return ctx;
+}
+
+}  // namespace
+
+TEST_CASE("headless context is an OpenGL 3.3+ core context", "[render]") {
+  auto& ctx = context();
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  CHECK(major * 10 + minor >= 33);
+  CHECK_FALSE(ctx.renderer().empty());
+}
+
+TEST_CASE("a body renders into a multisampled cell framebuffer", "[render]") {
+  context();
+  const auto mesh = render_test::make_ellipsoid(0.25f, 0.85f, 0.15f);
+  render::MeshGpu gpu;
+  gpu.upload(mesh.positions.data(), mesh.normals.data(), mesh.vertex_count(), mesh.indices.data(),
+             static_cast<int>(mesh.indices.size()));
+  CHECK(gpu.bounds_min().y == Approx(0.0f).margin(1e-5));
+  CHECK(gpu.bounds_max().y == Approx(1.7f).margin(1e-4));
+
+  render::BodyRenderer renderer;
+  render::Camera camera;
+  render::CellFramebuffer fbo(200, 200, 4);
+  fbo.begin();
+  renderer.draw(gpu, camera, fbo.width(), fbo.height());
+  fbo.end();
+  render::check_gl("draw");
+  const auto px = fbo.read_pixels();
+
+  // The body covers the centre of the image; the corners are backdrop.
+  const Rgb centre = pixel(px, 200, 100, 100);
+  const Rgb corner = pixel(px, 200, 5, 195);
+  CHECK(distance(centre, corner) > 40);
+  // The contact shadow darkens the floor just beside the feet compared with further out.
+  const char* out = std::getenv("SG_RENDER_TEST_PNG");
+  if (out != nullptr) render::write_png(out, 200, 200, px);
+
+  SECTION("an empty mesh draws only the backdrop") {
+    render::MeshGpu none;
+    fbo.begin();
+    renderer.draw(none, camera, fbo.width(), fbo.height());
+    fbo.end();
+    const auto bg = fbo.read_pixels();
+    CHECK(distance(pixel(bg, 200, 100, 100), pixel(px, 200, 100, 100)) > 40);
+  }
+
+  SECTION("updating positions moves the body") {
+    auto moved = mesh;
+    for (size_t i = 0; i < moved.positions.size(); i += 3) moved.positions[i] += 0.6f;
+    gpu.update(moved.positions.data(), moved.normals.data(), moved.vertex_count());
+    CHECK(gpu.bounds_min().x == Approx(0.35f).margin(1e-4));
+    fbo.begin();
+    renderer.draw(gpu, camera, fbo.width(), fbo.height());
+    fbo.end();
+    const auto px2 = fbo.read_pixels();
+    CHECK(distance(pixel(px2, 200, 100, 100), centre) > 20);
+  }
+}
+
+TEST_CASE("framebuffers resize and work without multisampling", "[render]") {
+  context();
+  render::CellFramebuffer fbo(64, 48, 0);
+  CHECK(fbo.samples() == 0);
+  fbo.resize(80, 60, 4);
+  CHECK(fbo.width() == 80);
+  CHECK(fbo.height() == 60);
+  CHECK(fbo.read_pixels().size() == 80u * 60u * 4u);
+}
+
+TEST_CASE("view presets and orbit", "[render]") {
+  render::Camera cam;
+  cam.set_preset(render::ViewPreset::kSide);
+  CHECK(cam.eye().x > 4.0f);
+  cam.set_preset(render::ViewPreset::kFront);
+  CHECK(cam.eye().z > 4.0f);
+  cam.orbit(0.0f, 1000.0f);
+  CHECK(cam.pitch_degrees == Approx(60.0f));
+  CHECK(render::parse_view_preset("3/4") == render::ViewPreset::kThreeQuarter);
+  CHECK_FALSE(render::parse_view_preset("top").has_value());
+}
+
+TEST_CASE("png writer reports an unwritable path", "[render]") {
+  std::vector<std::uint8_t> px(4 * 4 * 4, 128);
+  const auto dir = std::filesystem::temp_directory_path() / "sg_render_png_test";
+  std::filesystem::create_directories(dir);
+  render::write_png(dir / "ok.png", 4, 4, px);
+  CHECK(std::filesystem::file_size(dir / "ok.png") > 0);
+  CHECK_THROWS_WITH(render::write_png(dir / "missing" / "x.png", 4, 4, px),
+                    Catch::Contains("missing"));
+  std::filesystem::remove_all(dir);
+}
