@@ -33,6 +33,16 @@ struct Model {
   int total_components = 0;     // K in the file before truncation to the explored count
   Eigen::VectorXf variance_share;  // optional: share of variance of each kept component
 
+  // Joints are linear in betas too: joints = joint_template + joint_shapedirs * betas, with
+  // joint_template = J_regressor * v_template and joint_shapedirs = J_regressor * shapedirs
+  // (3J x K, row 3*j + axis). Filled by the loader and by prepare(); evaluate() falls back to
+  // J_regressor * vertices when their sizes do not match the arrays above.
+  Vertices joint_template;
+  Eigen::MatrixXf joint_shapedirs;
+
+  // Recomputes joint_template and joint_shapedirs; call after editing the arrays by hand.
+  void prepare();
+
   int vertex_count() const { return static_cast<int>(v_template.rows()); }
   int component_count() const { return static_cast<int>(shapedirs.cols()); }
   int joint_count() const { return static_cast<int>(j_regressor.rows()); }
@@ -52,6 +62,9 @@ BodyMesh evaluate(const Model& model, const Eigen::VectorXf& betas);
 // Translates mesh and joints so the lowest vertex touches y = 0 (feet on the ground), as
 // display and export want; returns the applied y offset.
 float place_on_ground(BodyMesh& mesh);
+
+// SMPL's 24 standard joint names, in SMPL's joint order.
+const std::vector<std::string>& smpl_joint_names();
 
 // The paper's mapping between the search box [0,1]^K and betas: beta = 6x - 3 (+-3 sigma).
 Eigen::VectorXf betas_from_unit(const Eigen::VectorXd& x);

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include "body/body_model.hpp"
 
@@ -22,5 +23,10 @@ struct ExportOptions {
 // is untouched and ExportError names the file and the reason (e.g. disk full).
 void export_gltf(const Model& model, const Eigen::VectorXf& betas,
                  const std::filesystem::path& path, const ExportOptions& options = {});
+
+// The same document as bytes: binary .glb (binary = true) or .gltf JSON with the buffer
+// embedded as a data URI. Throws ExportError on invalid betas.
+std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, bool binary,
+                              const ExportOptions& options = {});
 
 }  // namespace body

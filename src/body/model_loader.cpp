@@ -1,0 +1,221 @@
+#include "body/model_loader.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "body/model_validation.hpp"
+#include "body/npz_reader.hpp"
+
+#if defined(SG_HAVE_DEFAULT_MODEL)
+extern "C" const unsigned char sg_default_model_begin[];
+extern "C" const unsigned char sg_default_model_end[];
+#endif
+
+namespace body {
+
+namespace {
+
+constexpr std::int64_t kRootParentU32 = 4294967295LL;  // -1 stored as uint32
+
+std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
+  const std::string name = "kintree_table";
+  const NpyArray a = read_required_array(npz, name);
+  require_shape(npz, name, a.header, {2, joints}, "(2, J) with J = " + std::to_string(joints));
+  const auto v = integer_values(npz, name, a);
+  const auto J = static_cast<std::size_t>(joints);
+  // Row 0: parent ids; row 1: the joint ids (normally 0..J-1).
+  std::vector<int> parents(J, -2);
+  for (std::size_t i = 0; i < J; ++i) {
+    const std::int64_t id = v[J + i];
+    std::int64_t parent = v[i];
+    if (id < 0 || id >= joints) {
+      fail_array(npz, name, "joint id " + std::to_string(id) + " at index (1, " +
+                                std::to_string(i) + ") is out of range [0, " +
+                                std::to_string(joints) + ")");
+    }
+    if (parents[static_cast<std::size_t>(id)] != -2) {
+      fail_array(npz, name, "joint id " + std::to_string(id) + " appears twice in row 1");
+    }
+    if (parent == kRootParentU32 || parent == -1) {
+      parent = -1;
+    } else if (parent < 0 || parent >= joints) {
+      fail_array(npz, name, "parent " + std::to_string(parent) + " of joint " +
+                                std::to_string(id) + " is out of range (root parent is -1 or " +
+                                "4294967295)");
+    }
+    parents[static_cast<std::size_t>(id)] = static_cast<int>(parent);
+  }
+  int roots = 0;
+  for (std::size_t j = 0; j < J; ++j) {
+    if (parents[j] == -1) ++roots;
+    // Walk to the root; more than J steps means a cycle.
+    int k = static_cast<int>(j);
+    std::size_t steps = 0;
+    while (k >= 0 && steps <= J) {
+      k = parents[static_cast<std::size_t>(k)];
+      ++steps;
+    }
+    if (steps > J) {
+      fail_array(npz, name, "the joint hierarchy has a cycle through joint " + std::to_string(j));
+    }
+  }
+  if (roots != 1) {
+    fail_array(npz, name, "the joint hierarchy must have exactly one root, found " +
+                              std::to_string(roots));
+  }
+  return parents;
+}
+
+std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) {
+  if (J == 24) return smpl_joint_names();
+  std::vector<std::string> names;
+  if (npz.contains("joint_names")) {
+    const NpyArray a = npz.read("joint_names");
+    if (a.header.kind != 'S' && a.header.kind != 'U') {
+      fail_array(npz, "joint_names", "must be an array of strings, found dtype " +
+                                         a.header.dtype_name());
+    }
+    if (a.header.shape.size() != 1 || a.header.shape[0] != J) {
+      fail_array(npz, "joint_names", "wrong shape: expected (" + std::to_string(J) +
+                                         ",), found " + a.header.shape_string());
+    }
+    names = a.to_strings();
+  }
+  for (std::size_t j = 0; j < J; ++j) {
+    if (names.size() <= j) names.push_back("joint_" + std::to_string(j));
+    if (names[j].empty()) names[j] = "joint_" + std::to_string(j);
+  }
+  return names;
+}
+
+Model load_from_archive(const NpzArchive& npz, int components, const std::string& model_name) {
+  if (components < 0) {
+    throw ModelError(npz.label() + ": the number of shape components must be >= 0 (0 = all), got " +
+                     std::to_string(components));
+  }
+  Model m;
+  m.name = model_name;
+  m.source = npz.label();
+
+  // v_template (V x 3)
+  NpyArray a = read_required_array(npz, "v_template");
+  require_shape(npz, "v_template", a.header, {-1, 3}, "(V, 3)");
+  const long long V = static_cast<long long>(a.header.shape[0]);
+  if (V < 3) fail_array(npz, "v_template", "needs at least 3 vertices, found " + std::to_string(V));
+  {
+    const auto v = finite_floats(npz, "v_template", a);
+    m.v_template = Eigen::Map<const Vertices>(v.data(), V, 3);
+  }
+  const std::string vdesc = " with V = " + std::to_string(V) + " from v_template";
+
+  // shapedirs (V x 3 x K) -> 3V x K, row 3v + axis
+  a = read_required_array(npz, "shapedirs");
+  require_shape(npz, "shapedirs", a.header, {V, 3, -1}, "(V, 3, K)" + vdesc);
+  const long long K = static_cast<long long>(a.header.shape[2]);
+  if (K < 1) fail_array(npz, "shapedirs", "has no shape components (K = 0)");
+  m.total_components = static_cast<int>(K);
+  const long long keep = (components == 0 || components > K) ? K : components;
+  {
+    const auto sd = finite_floats(npz, "shapedirs", a);
+    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    m.shapedirs = Eigen::Map<const RowMat>(sd.data(), 3 * V, K).leftCols(keep);
+  }
+  a = NpyArray{};
+
+  // f (F x 3), indices in [0, V)
+  a = read_required_array(npz, "f");
+  require_shape(npz, "f", a.header, {-1, 3}, "(F, 3)");
+  const long long F = static_cast<long long>(a.header.shape[0]);
+  if (F < 1) fail_array(npz, "f", "has no faces");
+  {
+    const auto f = integer_values(npz, "f", a);
+    m.faces.resize(F, 3);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (f[i] < 0 || f[i] >= V) {
+        fail_array(npz, "f", "face index " + std::to_string(f[i]) + " at " +
+                                 index_string(a.header.shape, i) + " is out of range [0, " +
+                                 std::to_string(V) + ")");
+      }
+      m.faces.data()[i] = static_cast<std::uint32_t>(f[i]);
+    }
+  }
+
+  // J_regressor (J x V), dense
+  a = read_required_array(npz, "J_regressor");
+  require_shape(npz, "J_regressor", a.header, {-1, V}, "(J, V)" + vdesc);
+  const long long J = static_cast<long long>(a.header.shape[0]);
+  if (J < 1) fail_array(npz, "J_regressor", "has no joints");
+  {
+    const auto jr = finite_floats(npz, "J_regressor", a);
+    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    m.j_regressor = Eigen::Map<const RowMat>(jr.data(), J, V);
+  }
+
+  // weights (V x J)
+  a = read_required_array(npz, "weights");
+  require_shape(npz, "weights", a.header, {V, J},
+                "(V, J)" + vdesc + " and J = " + std::to_string(J) + " from J_regressor");
+  {
+    const auto w = finite_floats(npz, "weights", a);
+    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    m.weights = Eigen::Map<const RowMat>(w.data(), V, J);
+  }
+  a = NpyArray{};
+
+  m.parents = read_parents(npz, J);
+  m.joint_names = read_joint_names(npz, static_cast<std::size_t>(J));
+
+  // Optional: variance_share (K,)
+  if (npz.contains("variance_share")) {
+    const NpyArray vs = npz.read("variance_share");
+    if (!vs.header.needs_pickle()) {
+      require_shape(npz, "variance_share", vs.header, {K}, "(K,) with K = " + std::to_string(K));
+      const auto v = finite_floats(npz, "variance_share", vs);
+      m.variance_share = Eigen::Map<const Eigen::VectorXf>(v.data(), K).head(keep);
+    }
+  }
+  m.prepare();
+  return m;
+}
+
+}  // namespace
+
+const std::vector<std::string>& smpl_joint_names() {
+  static const std::vector<std::string> names = {
+      "pelvis",         "left_hip",       "right_hip",  "spine1",      "left_knee",
+      "right_knee",     "spine2",         "left_ankle", "right_ankle", "spine3",
+      "left_foot",      "right_foot",     "neck",       "left_collar", "right_collar",
+      "head",           "left_shoulder",  "right_shoulder", "left_elbow", "right_elbow",
+      "left_wrist",     "right_wrist",    "left_hand",  "right_hand"};
+  return names;
+}
+
+Model load_model(const std::filesystem::path& path, int components) {
+  const NpzArchive npz = NpzArchive::open_file(path);
+  return load_from_archive(npz, components, path.stem().string());
+}
+
+Model load_model_from_memory(const void* data, std::size_t size, const std::string& label,
+                             int components) {
+  const NpzArchive npz = NpzArchive::open_memory(data, size, label);
+  std::string name = std::filesystem::path(label).stem().string();
+  if (name.empty()) name = label;
+  return load_from_archive(npz, components, name);
+}
+
+Model load_default_model(int components) {
+#if defined(SG_HAVE_DEFAULT_MODEL)
+  const std::size_t size =
+      static_cast<std::size_t>(sg_default_model_end - sg_default_model_begin);
+  Model m = load_model_from_memory(sg_default_model_begin, size, "<embedded default>", components);
+  m.name = "default body";
+  return m;
+#else
+  (void)components;
+  throw ModelError(
+      "<embedded default>: the default model was not built in (assets/default_body.npz did not "
+      "exist when the project was configured; generate it and re-run cmake, or pass --model)");
+#endif
+}
+
+}  // namespace body

@@ -1,0 +1,207 @@
+#include "body/npz_reader.hpp"
+
+#include <zip.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <limits>
+
+namespace body {
+
+namespace {
+
+std::string zip_error_text(int code) {
+  switch (code) {
+    case ZIP_ER_NOZIP:
+      return "not a zip archive (.npz files are zip archives of .npy arrays)";
+    case ZIP_ER_NOENT:
+    case ZIP_ER_OPEN:
+      return std::string("cannot open the file: ") + std::strerror(errno ? errno : ENOENT);
+    case ZIP_ER_INCONS:
+      return "corrupt or truncated zip archive (inconsistent directory)";
+    case ZIP_ER_CRC:
+      return "corrupt zip entry (CRC mismatch)";
+    case ZIP_ER_EOF:
+      return "truncated zip archive (unexpected end of file)";
+    case ZIP_ER_READ:
+      return "read error (truncated or unreadable file)";
+    case ZIP_ER_COMPNOTSUPP:
+      return "zip entry uses an unsupported compression method";
+    case ZIP_ER_ENCRNOTSUPP:
+    case ZIP_ER_NOPASSWD:
+      return "zip entry is encrypted";
+    case ZIP_ER_MEMORY:
+      return "out of memory";
+    default: {
+      zip_error_t e;
+      zip_error_init_with_code(&e, code);
+      std::string s = zip_error_strerror(&e);
+      zip_error_fini(&e);
+      return "corrupt zip archive (" + s + ")";
+    }
+  }
+}
+
+std::string strip_npy(const std::string& entry) {
+  if (entry.size() > 4 && entry.compare(entry.size() - 4, 4, ".npy") == 0) {
+    return entry.substr(0, entry.size() - 4);
+  }
+  return entry;
+}
+
+}  // namespace
+
+struct NpzArchive::Impl {
+  zip_t* zip = nullptr;
+  std::vector<std::string> entries;  // entry names as stored (with .npy)
+  ~Impl() {
+    if (zip) zip_discard(zip);
+  }
+
+  void fill_entries(const std::string& label) {
+    const zip_int64_t n = zip_get_num_entries(zip, 0);
+    if (n < 0) throw ModelError(label + ": corrupt zip archive (no entry count)");
+    for (zip_int64_t i = 0; i < n; ++i) {
+      const char* name = zip_get_name(zip, static_cast<zip_uint64_t>(i), 0);
+      entries.push_back(name ? name : "");
+    }
+  }
+
+  zip_int64_t index_of(const std::string& name) const {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (strip_npy(entries[i]) == name) return static_cast<zip_int64_t>(i);
+    }
+    return -1;
+  }
+
+  // Reads up to `limit` bytes of entry i (all if limit is max). Throws std::string on error.
+  std::vector<std::uint8_t> read_entry(zip_uint64_t i, std::uint64_t limit,
+                                       std::uint64_t* full_size, bool* compressed) const {
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat_index(zip, i, 0, &st) != 0) throw std::string(zip_strerror(zip));
+    if (full_size) *full_size = (st.valid & ZIP_STAT_SIZE) ? st.size : 0;
+    if (compressed) *compressed = (st.valid & ZIP_STAT_COMP_METHOD) && st.comp_method != ZIP_CM_STORE;
+    std::uint64_t want = (st.valid & ZIP_STAT_SIZE) ? std::min<std::uint64_t>(st.size, limit) : limit;
+    if (want > std::numeric_limits<std::size_t>::max() / 2) throw std::string("entry too large");
+    // A directory claiming far more data than deflate can expand to is corrupt.
+    if ((st.valid & ZIP_STAT_COMP_SIZE) && want > st.comp_size * 1100 + 4096) {
+      throw std::string("corrupt zip entry (claims " + std::to_string(st.size) +
+                        " bytes from " + std::to_string(st.comp_size) + " compressed)");
+    }
+    zip_file_t* f = zip_fopen_index(zip, i, 0);
+    if (!f) throw zip_error_text(zip_error_code_zip(zip_get_error(zip)));
+    std::vector<std::uint8_t> buf(static_cast<std::size_t>(want));
+    std::size_t got = 0;
+    while (got < buf.size()) {
+      const zip_int64_t n = zip_fread(f, buf.data() + got, buf.size() - got);
+      if (n < 0) {
+        const std::string err = zip_error_text(zip_error_code_zip(zip_file_get_error(f)));
+        zip_fclose(f);
+        throw err;
+      }
+      if (n == 0) break;
+      got += static_cast<std::size_t>(n);
+    }
+    const int rc = zip_fclose(f);
+    if (got < buf.size()) {
+      throw std::string("truncated zip entry (read " + std::to_string(got) + " of " +
+                        std::to_string(buf.size()) + " bytes)");
+    }
+    if (rc != 0 && want == st.size) throw zip_error_text(rc);
+    return buf;
+  }
+};
+
+NpzArchive::NpzArchive(NpzArchive&&) noexcept = default;
+NpzArchive& NpzArchive::operator=(NpzArchive&&) noexcept = default;
+NpzArchive::~NpzArchive() = default;
+
+NpzArchive NpzArchive::open_file(const std::filesystem::path& path) {
+  NpzArchive a;
+  a.label_ = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ModelError(a.label_ + ": file not found");
+  if (std::filesystem::is_directory(path, ec)) throw ModelError(a.label_ + ": is a directory");
+  a.impl_ = std::make_unique<Impl>();
+  int err = 0;
+  errno = 0;
+  a.impl_->zip = zip_open(a.label_.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err);
+  if (!a.impl_->zip) throw ModelError(a.label_ + ": " + zip_error_text(err));
+  a.impl_->fill_entries(a.label_);
+  return a;
+}
+
+NpzArchive NpzArchive::open_memory(const void* data, std::size_t size, const std::string& label) {
+  NpzArchive a;
+  a.label_ = label;
+  if (data == nullptr || size == 0) throw ModelError(label + ": empty data (not a zip archive)");
+  a.impl_ = std::make_unique<Impl>();
+  zip_error_t error;
+  zip_error_init(&error);
+  zip_source_t* src = zip_source_buffer_create(data, size, 0, &error);
+  if (!src) {
+    const std::string msg = zip_error_strerror(&error);
+    zip_error_fini(&error);
+    throw ModelError(label + ": " + msg);
+  }
+  a.impl_->zip = zip_open_from_source(src, ZIP_RDONLY | ZIP_CHECKCONS, &error);
+  if (!a.impl_->zip) {
+    const int code = zip_error_code_zip(&error);
+    zip_source_free(src);
+    zip_error_fini(&error);
+    throw ModelError(label + ": " + zip_error_text(code));
+  }
+  zip_error_fini(&error);
+  a.impl_->fill_entries(label);
+  return a;
+}
+
+std::vector<std::string> NpzArchive::names() const {
+  std::vector<std::string> out;
+  for (const auto& e : impl_->entries) out.push_back(strip_npy(e));
+  return out;
+}
+
+bool NpzArchive::contains(const std::string& name) const { return impl_->index_of(name) >= 0; }
+
+std::vector<NpzEntryInfo> NpzArchive::list() const {
+  std::vector<NpzEntryInfo> out;
+  for (std::size_t i = 0; i < impl_->entries.size(); ++i) {
+    NpzEntryInfo info;
+    info.name = strip_npy(impl_->entries[i]);
+    try {
+      auto head = impl_->read_entry(i, 4096, &info.stored_size, &info.compressed);
+      std::size_t need = npy_header_size(head.data(), head.size());
+      if (need > head.size()) head = impl_->read_entry(i, need, nullptr, nullptr);
+      info.header = parse_npy_header(head.data(), head.size());
+    } catch (const std::string& e) {
+      info.problem = e;
+    } catch (const NpyError& e) {
+      info.problem = e.what();
+    }
+    out.push_back(std::move(info));
+  }
+  return out;
+}
+
+NpyArray NpzArchive::read(const std::string& name) const {
+  const zip_int64_t i = impl_->index_of(name);
+  const std::string where = label_ + ": array '" + name + "': ";
+  if (i < 0) throw ModelError(where + "missing (the file has no " + name + ".npy)");
+  try {
+    const auto bytes = impl_->read_entry(static_cast<zip_uint64_t>(i),
+                                         std::numeric_limits<std::uint64_t>::max(), nullptr,
+                                         nullptr);
+    return parse_npy(bytes.data(), bytes.size());
+  } catch (const std::string& e) {
+    throw ModelError(where + e);
+  } catch (const NpyError& e) {
+    throw ModelError(where + e.what());
+  } catch (const std::bad_alloc&) {
+    throw ModelError(where + "out of memory");
+  }
+}
+
+}  // namespace body
