@@ -59,7 +59,9 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
   }
 }
 
-bool ArgParser::has(const std::string& name) const { return values_.count(name) != 0; }
+bool ArgParser::has(const std::string& name) const {
+  return values_.count(name) != 0;
+}
 
 std::optional<std::string> ArgParser::get(const std::string& name) const {
   const auto it = values_.find(name);

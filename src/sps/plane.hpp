@@ -7,16 +7,25 @@ namespace sps {
 
 struct Plane {
   Eigen::VectorXd c;  // centre: the current best point x+
-  Eigen::VectorXd u;  // first half-diagonal: x_EI - x+
-  Eigen::VectorXd v;  // second half-diagonal, (nearly) orthogonal to u
+  Eigen::VectorXd u;  // first half-diagonal: x_EI - x+ (c + u is x_EI)
+  Eigen::VectorXd v;  // second half-diagonal, orthogonal to u; zero for a line (SLS)
+  // The paper's opposite-vertex correction: when c - u would leave [0,1]^n, that vertex is
+  // moved along the diagonal to the boundary, i.e. it becomes c - u_neg_scale * u. The plane
+  // stays flat; only the half on the c - u side is scaled along u.
+  double u_neg_scale = 1.0;
 
   int dims() const { return static_cast<int>(c.size()); }
+  bool is_line() const { return v.size() == 0 || v.isZero(0.0); }
 
   // Grid coordinates (s, t) in [-1, 1]^2 at the coarsest zoom level: the corners are the
-  // vertices ((1,1) -> c+u, (-1,-1) -> c-u, (1,-1) -> c+v, (-1,1) -> c-v), (0,0) is c.
-  // The map is affine, so straight rows of cells are straight lines in parameter space.
+  // vertices ((1,1) -> c+u, (-1,-1) -> c-u, (1,-1) -> c+v, (-1,1) -> c-v) and (0,0) is c.
+  // Without the correction the map is affine, so rows of cells are straight lines.
   Eigen::VectorXd point(double s, double t) const {
-    return c + 0.5 * s * (u + v) + 0.5 * t * (u - v);
+    const double a = 0.5 * (s + t);  // coordinate along u
+    const double b = 0.5 * (s - t);  // coordinate along v
+    Eigen::VectorXd x = c + (a >= 0.0 ? a : a * u_neg_scale) * u;
+    if (v.size() == c.size()) x += b * v;
+    return x;
   }
 };
 

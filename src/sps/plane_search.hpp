@@ -4,12 +4,16 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "sps/plane.hpp"
+#include "sps/preference_data.hpp"
+#include "sps/preference_model.hpp"
 
 namespace sps {
 
@@ -29,10 +33,14 @@ struct SearchOptions {
   std::uint64_t seed = 1;
   Method method = Method::kSps;
   CurrentBest current_best = CurrentBest::kPosteriorMean;
-  int plane_restarts = 10;   // random restarts for v (paper: 10)
-  int ei_restarts = 0;       // multi-start count for x_EI; 0 = automatic
-  int threads = 2;           // restarts run in parallel
+  int plane_restarts = 10;  // random restarts for v (paper: 10)
+  int ei_restarts = 0;      // multi-start count for x_EI; 0 = automatic
+  int threads = 2;          // restarts run in parallel
+  ModelSettings model;      // priors and likelihood of the preference model
 };
+
+const char* method_name(Method m);
+bool parse_method(const std::string& name, Method& out);
 
 class PlaneSearch {
  public:
@@ -75,13 +83,31 @@ class PlaneSearch {
   // Seconds spent inside the last submit() (absorbing the choice and proposing the plane).
   double last_submit_seconds() const { return last_submit_seconds_; }
 
-  struct Impl;  // the fitted model and data (internal)
+  const PreferenceData& data() const { return data_; }
+  const PreferenceModel& model() const { return *model_; }
 
  private:
-  struct Snapshot;
+  // Everything needed to go back to the moment before a submission.
+  struct Snapshot {
+    Plane plane;
+    int points = 0;
+    int preferences = 0;
+    KernelParams params;
+    Eigen::VectorXd latent;
+    std::string rng_state;
+  };
+
+  void propose_next_plane(const Eigen::VectorXd& last_choice);
+  std::string rng_state() const;
+  void set_rng_state(const std::string& state);
+
   SearchOptions options_;
+  std::mt19937_64 rng_;
+  PreferenceData data_;
+  std::shared_ptr<const PreferenceModel> model_;  // immutable; shared by copies
   Plane plane_;
-  std::vector<Snapshot> history_;  // one per submission, for undo and serialization
+  std::vector<Snapshot> history_;  // one per submission, oldest first
+  int start_overs_ = 0;
   double last_submit_seconds_ = 0.0;
 };
 

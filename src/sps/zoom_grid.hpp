@@ -19,16 +19,16 @@ struct GridCell {
 
 // Where the grid centre sits in plane coordinates and how far apart cells are.
 struct GridView {
-  double s = 0.0;        // centre, plane coordinates
+  double s = 0.0;  // centre, plane coordinates
   double t = 0.0;
   double spacing = 1.0;  // distance between neighbouring cells in (s, t) units
 };
 
 struct GridPoint {
-  Eigen::VectorXd x;      // parameter vector, always inside [0,1]^n
-  double s = 0.0;         // plane coordinates before clamping
+  Eigen::VectorXd x;  // parameter vector, always inside [0,1]^n
+  double s = 0.0;     // plane coordinates before clamping
   double t = 0.0;
-  bool clamped = false;   // the plane point left [0,1]^n and was clamped back
+  bool clamped = false;  // the plane point left [0,1]^n and was clamped back
 };
 
 // The view after clicking `path` in order, starting from the coarsest level

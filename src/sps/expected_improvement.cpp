@@ -1,0 +1,108 @@
+#include "sps/expected_improvement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "sps/bounded_maximizer.hpp"
+#include "sps/parallel_for.hpp"
+
+namespace sps {
+
+namespace {
+
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+
+double normal_pdf(double z) {
+  return kInvSqrt2Pi * std::exp(-0.5 * z * z);
+}
+double normal_cdf(double z) {
+  return 0.5 * std::erfc(-z / std::sqrt(2.0));
+}
+
+}  // namespace
+
+double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd& x,
+                            double best_mean, Eigen::VectorXd* gradient) {
+  double mean = 0.0;
+  double variance = 0.0;
+  Eigen::VectorXd d_mean;
+  Eigen::VectorXd d_variance;
+  model.predict(x, mean, variance, gradient != nullptr ? &d_mean : nullptr,
+                gradient != nullptr ? &d_variance : nullptr);
+  const double sigma = std::sqrt(variance);
+  const double diff = mean - best_mean;
+  if (sigma < 1e-12) {
+    if (gradient != nullptr) {
+      *gradient = diff > 0.0 ? d_mean : Eigen::VectorXd::Zero(x.size());
+    }
+    return std::max(diff, 0.0);
+  }
+  const double z = diff / sigma;
+  const double cdf = normal_cdf(z);
+  const double pdf = normal_pdf(z);
+  if (gradient != nullptr) {
+    // dEI/dmu = Phi(z), dEI/dsigma = phi(z), dsigma/dx = dvar/dx / (2 sigma).
+    *gradient = cdf * d_mean + (pdf / (2.0 * sigma)) * d_variance;
+  }
+  return diff * cdf + sigma * pdf;
+}
+
+Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, double best_mean,
+                                              const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
+                                              const EiSearchSettings& settings) {
+  const int d = model.dims();
+  const int candidate_count =
+      settings.candidates > 0 ? settings.candidates : std::min(2000, 100 + 50 * d);
+  const int start_count = settings.starts > 0 ? settings.starts : 6;
+
+  // Candidates: uniform samples, x+ and small perturbations of observed points (EI often
+  // peaks just next to the best observations).
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Eigen::VectorXd> candidates;
+  candidates.reserve(static_cast<std::size_t>(candidate_count + model.point_count() + 1));
+  candidates.push_back(x_plus);
+  for (int i = 0; i < model.point_count(); ++i) {
+    Eigen::VectorXd x = model.points().col(i);
+    for (int k = 0; k < d; ++k) x(k) += 0.05 * normal(rng);
+    candidates.push_back(x.cwiseMax(0.0).cwiseMin(1.0));
+  }
+  for (int i = 0; i < candidate_count; ++i) {
+    Eigen::VectorXd x(d);
+    for (int k = 0; k < d; ++k) x(k) = uniform(rng);
+    candidates.push_back(std::move(x));
+  }
+  const int total = static_cast<int>(candidates.size());
+  std::vector<double> scores(static_cast<std::size_t>(total));
+  parallel_for(total, settings.threads, [&](int i) {
+    scores[static_cast<std::size_t>(i)] =
+        expected_improvement(model, candidates[static_cast<std::size_t>(i)], best_mean);
+  });
+  std::vector<int> order(static_cast<std::size_t>(total));
+  std::iota(order.begin(), order.end(), 0);
+  const int starts = std::min(start_count, total);
+  std::partial_sort(order.begin(), order.begin() + starts, order.end(), [&](int a, int b) {
+    return scores[static_cast<std::size_t>(a)] > scores[static_cast<std::size_t>(b)] ||
+           (scores[static_cast<std::size_t>(a)] == scores[static_cast<std::size_t>(b)] && a < b);
+  });
+
+  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
+  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
+  std::vector<MaximizeResult> results(static_cast<std::size_t>(starts));
+  parallel_for(starts, settings.threads, [&](int s) {
+    const Objective fn = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+      return expected_improvement(model, x, best_mean, &grad);
+    };
+    results[static_cast<std::size_t>(s)] = maximize_bounded(
+        fn, candidates[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])], lower, upper,
+        settings.max_iterations, 1e-9);
+  });
+  const auto best = std::max_element(
+      results.begin(), results.end(),
+      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
+  return best->x;
+}
+
+}  // namespace sps

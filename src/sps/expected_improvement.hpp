@@ -1,0 +1,30 @@
+// Expected improvement over the current best posterior mean, and its maximization over the
+// unit box (multi-start bounded L-BFGS-B).
+#pragma once
+
+#include <random>
+
+#include <Eigen/Core>
+
+#include "sps/preference_model.hpp"
+
+namespace sps {
+
+// EI(x) = (mu - mu+) Phi(z) + sigma phi(z), z = (mu - mu+) / sigma (maximization form; the
+// paper's appendix prints gamma with the sign flipped). Fills the gradient if requested.
+double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd& x,
+                            double best_mean, Eigen::VectorXd* gradient = nullptr);
+
+struct EiSearchSettings {
+  int candidates = 0;  // random candidates scored before local search; 0 = automatic
+  int starts = 0;      // local searches from the best candidates; 0 = automatic
+  int max_iterations = 60;
+  int threads = 2;
+};
+
+// argmax EI over [0,1]^d. `x_plus` and the observed points seed the candidates too.
+Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, double best_mean,
+                                              const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
+                                              const EiSearchSettings& settings);
+
+}  // namespace sps

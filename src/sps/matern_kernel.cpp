@@ -1,0 +1,121 @@
+#include "sps/matern_kernel.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace sps {
+
+namespace {
+
+constexpr double kSqrt5 = 2.23606797749978969641;
+
+// Shape of the kernel as a function of r (without the amplitude).
+double matern52(double r) {
+  return (1.0 + kSqrt5 * r + (5.0 / 3.0) * r * r) * std::exp(-kSqrt5 * r);
+}
+
+// (d matern52 / dr) / r, finite at r = 0: -(5/3)(1 + sqrt5 r) exp(-sqrt5 r).
+double matern52_dr_over_r(double r) {
+  return -(5.0 / 3.0) * (1.0 + kSqrt5 * r) * std::exp(-kSqrt5 * r);
+}
+
+}  // namespace
+
+Eigen::VectorXd KernelParams::to_log() const {
+  Eigen::VectorXd out(length_scales.size() + 1);
+  out(0) = std::log(amplitude);
+  out.tail(length_scales.size()) = length_scales.array().log();
+  return out;
+}
+
+KernelParams KernelParams::from_log(const Eigen::VectorXd& log_params) {
+  KernelParams p;
+  p.amplitude = std::exp(log_params(0));
+  p.length_scales = log_params.tail(log_params.size() - 1).array().exp();
+  return p;
+}
+
+MaternKernel::MaternKernel(KernelParams params) : params_(std::move(params)) {
+  inv_sq_lengths_ = params_.length_scales.array().square().inverse();
+}
+
+double MaternKernel::operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  const double r2 = ((x - y).array().square() * inv_sq_lengths_.array()).sum();
+  return variance() * matern52(std::sqrt(r2));
+}
+
+Eigen::VectorXd MaternKernel::gradient_x(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  const Eigen::ArrayXd diff = (x - y).array();
+  const double r = std::sqrt((diff.square() * inv_sq_lengths_.array()).sum());
+  // dk/dx_k = a^2 * (dm/dr) * (x_k - y_k) / (l_k^2 r)
+  return (variance() * matern52_dr_over_r(r) * diff * inv_sq_lengths_.array()).matrix();
+}
+
+Eigen::MatrixXd MaternKernel::gram(const Eigen::MatrixXd& points) const {
+  const Eigen::Index n = points.cols();
+  Eigen::MatrixXd k(n, n);
+  const double var = variance();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    k(j, j) = var;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      const double r2 =
+          ((points.col(i) - points.col(j)).array().square() * inv_sq_lengths_.array()).sum();
+      k(i, j) = k(j, i) = var * matern52(std::sqrt(r2));
+    }
+  }
+  return k;
+}
+
+Eigen::VectorXd MaternKernel::cross(const Eigen::MatrixXd& points, const Eigen::VectorXd& x) const {
+  const Eigen::Index n = points.cols();
+  Eigen::VectorXd k(n);
+  const double var = variance();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double r2 = ((points.col(i) - x).array().square() * inv_sq_lengths_.array()).sum();
+    k(i) = var * matern52(std::sqrt(r2));
+  }
+  return k;
+}
+
+void MaternKernel::cross_with_gradient(const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
+                                       Eigen::VectorXd& k, Eigen::MatrixXd& dk_dx) const {
+  const Eigen::Index n = points.cols();
+  k.resize(n);
+  dk_dx.resize(x.size(), n);
+  const double var = variance();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::ArrayXd diff = x.array() - points.col(i).array();
+    const Eigen::ArrayXd scaled = diff * inv_sq_lengths_.array();
+    const double r = std::sqrt((diff * scaled).sum());
+    const double e = std::exp(-kSqrt5 * r);
+    k(i) = var * (1.0 + kSqrt5 * r + (5.0 / 3.0) * r * r) * e;
+    dk_dx.col(i) = (var * -(5.0 / 3.0) * (1.0 + kSqrt5 * r) * e * scaled).matrix();
+  }
+}
+
+Eigen::VectorXd MaternKernel::contract_log_gradients(const Eigen::MatrixXd& points,
+                                                     const Eigen::MatrixXd& m) const {
+  const Eigen::Index n = points.cols();
+  const Eigen::Index d = points.rows();
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(d + 1);
+  const double var = variance();
+  Eigen::ArrayXd length_acc = Eigen::ArrayXd::Zero(d);
+  double amp_acc = 0.0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    amp_acc += m(j, j) * var;  // diagonal: k = a^2, no length-scale dependence
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      const Eigen::ArrayXd sq =
+          (points.col(i) - points.col(j)).array().square() * inv_sq_lengths_.array();
+      const double r = std::sqrt(sq.sum());
+      const double mij = m(i, j) + m(j, i);  // both triangle halves
+      amp_acc += mij * var * matern52(r);
+      // dr/dlog l_k = -sq_k / r, so dk/dlog l_k = -a^2 (dm/dr / r) sq_k.
+      length_acc += (mij * -var * matern52_dr_over_r(r)) * sq;
+    }
+  }
+  g(0) = 2.0 * amp_acc;  // dk/dlog a = 2k
+  g.tail(d) = length_acc.matrix();
+  return g;
+}
+
+}  // namespace sps

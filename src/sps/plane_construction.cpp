@@ -1,0 +1,184 @@
+#include "sps/plane_construction.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "sps/bounded_maximizer.hpp"
+#include "sps/expected_improvement.hpp"
+#include "sps/parallel_for.hpp"
+
+namespace sps {
+
+namespace {
+
+constexpr std::array<double, 5> kLattice{-1.0, -0.5, 0.0, 0.5, 1.0};
+
+Eigen::VectorXd random_unit(int d, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::VectorXd v(d);
+  do {
+    for (int k = 0; k < d; ++k) v(k) = normal(rng);
+  } while (v.norm() < 1e-12);
+  return v.normalized();
+}
+
+// Half-width of the box for v: c +- v inside [0,1]^d.
+Eigen::VectorXd v_bound(const Eigen::VectorXd& c) {
+  return c.cwiseMin(Eigen::VectorXd::Ones(c.size()) - c).cwiseMax(0.0);
+}
+
+// Scales v down so that c +- v stays in the box.
+Eigen::VectorXd fit_symmetric(const Eigen::VectorXd& c, const Eigen::VectorXd& v) {
+  const Eigen::VectorXd bound = v_bound(c);
+  double beta = 1.0;
+  for (Eigen::Index k = 0; k < v.size(); ++k) {
+    if (std::abs(v(k)) > bound(k)) beta = std::min(beta, bound(k) / std::abs(v(k)));
+  }
+  return beta * v;
+}
+
+}  // namespace
+
+double fit_in_box(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) {
+  double beta = 1.0;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    if (dir(k) > 0.0) beta = std::min(beta, (1.0 - x(k)) / dir(k));
+    if (dir(k) < 0.0) beta = std::min(beta, -x(k) / dir(k));
+  }
+  return std::max(0.0, beta);
+}
+
+Eigen::VectorXd random_orthogonal_direction(const Eigen::VectorXd& u, std::mt19937_64& rng) {
+  const int d = static_cast<int>(u.size());
+  const double uu = u.squaredNorm();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    Eigen::VectorXd v = random_unit(d, rng);
+    if (uu > 0.0) v -= (v.dot(u) / uu) * u;
+    if (v.norm() > 1e-6) return v.normalized();
+  }
+  return random_unit(d, rng);  // d == 1: no orthogonal direction exists
+}
+
+Plane first_plane(int dims, std::mt19937_64& rng) {
+  Plane p;
+  p.c = Eigen::VectorXd::Constant(dims, 0.5);
+  const Eigen::VectorXd u = random_unit(dims, rng);
+  const Eigen::VectorXd v = random_orthogonal_direction(u, rng);
+  // The same length for both half-diagonals (a square) as large as the box allows.
+  const double length = 0.5 / std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
+  p.u = length * u;
+  p.v = dims > 1 ? Eigen::VectorXd(length * v) : Eigen::VectorXd::Zero(dims);
+  return p;
+}
+
+void correct_opposite_vertex(Plane& plane) {
+  plane.u_neg_scale = fit_in_box(plane.c, -plane.u);
+}
+
+double plane_acquisition(const PreferenceModel& model, const Plane& plane, double best_mean) {
+  double total = 0.0;
+  for (double s : kLattice) {
+    for (double t : kLattice) total += expected_improvement(model, plane.point(s, t), best_mean);
+  }
+  return total / static_cast<double>(kLattice.size() * kLattice.size());
+}
+
+Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
+                const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,
+                const PlaneSearchSettings& settings) {
+  const int d = static_cast<int>(x_plus.size());
+  Plane base;
+  base.c = x_plus;
+  base.u = x_ei - x_plus;
+  if (base.u.norm() < 1e-6) {
+    // EI peaks at x+ itself (the model is confident): still show a useful neighbourhood.
+    const Eigen::VectorXd dir = 0.25 * random_unit(d, rng);
+    const double forward = fit_in_box(x_plus, dir);
+    const double backward = fit_in_box(x_plus, -dir);
+    base.u = (forward >= backward ? forward : -backward) * dir;
+  }
+  correct_opposite_vertex(base);
+  const Eigen::VectorXd& u = base.u;
+  const Eigen::VectorXd bound = v_bound(x_plus);
+
+  // Starting points, drawn before the parallel part so the result is deterministic.
+  const int restarts = std::max(1, settings.restarts);
+  std::vector<Eigen::VectorXd> starts;
+  std::uniform_real_distribution<double> uniform(0.2, 1.0);
+  for (int r = 0; r < restarts; ++r) {
+    const Eigen::VectorXd dir = random_orthogonal_direction(u, rng);
+    starts.push_back(uniform(rng) * fit_symmetric(x_plus, 10.0 * dir));
+  }
+
+  // Lattice points depending on v (b != 0); the others are constant in v.
+  struct LatticePoint {
+    double a, b;
+  };
+  std::vector<LatticePoint> lattice;
+  for (double s : kLattice) {
+    for (double t : kLattice) {
+      if (s != t) lattice.push_back({0.5 * (s + t), 0.5 * (s - t)});
+    }
+  }
+  const double inv_count = 1.0 / static_cast<double>(kLattice.size() * kLattice.size());
+
+  std::vector<MaximizeResult> results(static_cast<std::size_t>(restarts));
+  parallel_for(restarts, settings.threads, [&](int r) {
+    const Objective fn = [&](const Eigen::VectorXd& v, Eigen::VectorXd& grad) {
+      grad.setZero(d);
+      double value = 0.0;
+      Eigen::VectorXd ei_grad;
+      for (const LatticePoint& lp : lattice) {
+        const double a = lp.a >= 0.0 ? lp.a : lp.a * base.u_neg_scale;
+        const Eigen::VectorXd x = base.c + a * u + lp.b * v;
+        value += expected_improvement(model, x, best_mean, &ei_grad);
+        grad += lp.b * ei_grad;
+      }
+      value *= inv_count;
+      grad *= inv_count;
+      // Soft orthogonality: -(u.v)^2.
+      const double uv = u.dot(v);
+      value -= uv * uv;
+      grad -= 2.0 * uv * u;
+      return value;
+    };
+    results[static_cast<std::size_t>(r)] = maximize_bounded(
+        fn, starts[static_cast<std::size_t>(r)], -bound, bound, settings.max_iterations, 1e-10);
+  });
+  const auto best = std::max_element(
+      results.begin(), results.end(),
+      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
+  Plane plane = base;
+  // Make the rhombus exact: remove the residual u component, then keep c +- v in the box.
+  Eigen::VectorXd v = best->x;
+  if (u.squaredNorm() > 0.0) v -= (v.dot(u) / u.squaredNorm()) * u;
+  v = fit_symmetric(x_plus, v);
+  if (v.norm() < 1e-6 && d > 1) {
+    // x+ sits in a corner of the box: no symmetric v fits. Use a small orthogonal direction;
+    // the grid clamps the points that leave the box.
+    v = 0.1 * random_orthogonal_direction(u, rng);
+  }
+  plane.v = v;
+  return plane;
+}
+
+Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng) {
+  Plane p;
+  p.c = x_plus;
+  p.u = random_unit(static_cast<int>(x_plus.size()), rng);
+  p.v = x_plus.size() > 1 ? random_orthogonal_direction(p.u, rng)
+                          : Eigen::VectorXd(Eigen::VectorXd::Zero(x_plus.size()));
+  return p;
+}
+
+Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei) {
+  Plane p;
+  p.c = x_plus;
+  p.u = x_ei - x_plus;
+  p.v = Eigen::VectorXd::Zero(x_plus.size());
+  return p;
+}
+
+}  // namespace sps

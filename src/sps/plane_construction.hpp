@@ -1,0 +1,48 @@
+// Building the next search plane (paper, "Plane Construction"): c = x+, u = x_EI - x+, v by
+// maximizing the mean EI over a 5x5 lattice on the plane with a soft orthogonality term, plus
+// the baselines (random planes, sequential line search) and the first plane.
+#pragma once
+
+#include <random>
+
+#include <Eigen/Core>
+
+#include "sps/plane.hpp"
+#include "sps/preference_model.hpp"
+
+namespace sps {
+
+// Largest beta in [0, 1] with x + beta * dir inside [0,1]^d.
+double fit_in_box(const Eigen::VectorXd& x, const Eigen::VectorXd& dir);
+
+// A random unit vector orthogonal to `u` (any unit vector if u is zero).
+Eigen::VectorXd random_orthogonal_direction(const Eigen::VectorXd& u, std::mt19937_64& rng);
+
+// First plane (no data): the largest square with a random orientation centred at 0.5 that
+// fits in the box.
+Plane first_plane(int dims, std::mt19937_64& rng);
+
+// Sets u_neg_scale so that c - u_neg_scale * u stays in the box (the opposite-vertex
+// correction), and guards against a degenerate u.
+void correct_opposite_vertex(Plane& plane);
+
+// The plane acquisition: mean EI over the 5x5 lattice (s, t in {-1,-.5,0,.5,1}).
+double plane_acquisition(const PreferenceModel& model, const Plane& plane, double best_mean);
+
+struct PlaneSearchSettings {
+  int restarts = 10;
+  int max_iterations = 50;
+  int threads = 2;
+};
+
+Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
+                const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,
+                const PlaneSearchSettings& settings);
+
+// c = x+, random orthogonal u, v of length 1 (points outside the box are clamped when shown).
+Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
+
+// Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.
+Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei);
+
+}  // namespace sps

@@ -1,0 +1,240 @@
+#include "sps/preference_model.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <Eigen/LU>
+
+#include "sps/bounded_maximizer.hpp"
+#include "sps/btl_likelihood.hpp"
+
+namespace sps {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Log density of the log-normal priors, in terms of log theta (a Gaussian in log space), and
+// its gradient. The Jacobian of the log transform is left out, as a MAP estimate in log
+// space wants.
+double log_prior(const Eigen::VectorXd& log_theta, const Eigen::VectorXd& mean, double variance,
+                 Eigen::VectorXd* gradient) {
+  const Eigen::VectorXd diff = log_theta - mean;
+  if (gradient != nullptr) *gradient = -diff / variance;
+  return -0.5 * diff.squaredNorm() / variance -
+         0.5 * static_cast<double>(diff.size()) * std::log(2.0 * kPi * variance);
+}
+
+Eigen::MatrixXd covariance(const MaternKernel& kernel, const Eigen::MatrixXd& points,
+                           double noise) {
+  Eigen::MatrixXd c = kernel.gram(points);
+  c.diagonal().array() += noise;
+  return c;
+}
+
+}  // namespace
+
+Eigen::VectorXd ModelSettings::prior_log_mean(int dims) const {
+  Eigen::VectorXd mean(dims + 1);
+  mean(0) = std::log(amplitude_prior);
+  mean.tail(dims).setConstant(std::log(length_scale_prior));
+  return mean;
+}
+
+MapObjective::MapObjective(const PreferenceData& data, const ModelSettings& settings)
+    : data_(data), settings_(settings) {}
+
+double MapObjective::joint(const Eigen::VectorXd& log_theta, const Eigen::VectorXd& f) const {
+  const MaternKernel kernel(KernelParams::from_log(log_theta));
+  const Eigen::LLT<Eigen::MatrixXd> llt(
+      covariance(kernel, data_.points(), settings_.noise_variance));
+  const Eigen::MatrixXd l = llt.matrixL();
+  const double log_det = 2.0 * l.diagonal().array().log().sum();
+  const double n = static_cast<double>(f.size());
+  return btl_log_likelihood(data_.preferences(), f, settings_.btl_scale) -
+         0.5 * f.dot(llt.solve(f)) - 0.5 * log_det - 0.5 * n * std::log(2.0 * kPi) +
+         log_prior(log_theta, settings_.prior_log_mean(data_.dims()), settings_.prior_log_variance,
+                   nullptr);
+}
+
+Eigen::VectorXd MapObjective::optimal_latent(const Eigen::VectorXd& log_theta,
+                                             Eigen::VectorXd f) const {
+  const MaternKernel kernel(KernelParams::from_log(log_theta));
+  const Eigen::MatrixXd c = covariance(kernel, data_.points(), settings_.noise_variance);
+  const Eigen::LLT<Eigen::MatrixXd> llt(c);
+  const Eigen::Index n = c.rows();
+  const double s = settings_.btl_scale;
+  const auto psi = [&](const Eigen::VectorXd& latent) {
+    return btl_log_likelihood(data_.preferences(), latent, s) - 0.5 * latent.dot(llt.solve(latent));
+  };
+  if (f.size() != n) f = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd grad;
+  Eigen::MatrixXd w;
+  double current = psi(f);
+  // The inner problem is concave (BTL is log-concave, the prior Gaussian): Newton with step
+  // halving converges in a handful of steps from a warm start.
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    btl_log_likelihood(data_.preferences(), f, s, &grad, &w);
+    // Newton step: (C^-1 + W) f_new = W f + grad  <=>  f_new = C (I + W C)^-1 (W f + grad).
+    const Eigen::VectorXd rhs = w * f + grad;
+    Eigen::MatrixXd a = w * c;
+    a.diagonal().array() += 1.0;
+    const Eigen::VectorXd target = c * a.partialPivLu().solve(rhs);
+    const Eigen::VectorXd step = target - f;
+    if (!step.allFinite()) break;
+    double t = 1.0;
+    bool improved = false;
+    for (int halving = 0; halving < 20; ++halving, t *= 0.5) {
+      const Eigen::VectorXd candidate = f + t * step;
+      const double value = psi(candidate);
+      if (value >= current - 1e-12 * std::abs(current)) {
+        f = candidate;
+        improved = value > current;
+        current = value;
+        break;
+      }
+    }
+    if (!improved || (t * step).lpNorm<Eigen::Infinity>() < 1e-10) break;
+  }
+  return f;
+}
+
+double MapObjective::evaluate(const Eigen::VectorXd& log_theta, Eigen::VectorXd& f,
+                              Eigen::VectorXd& gradient) const {
+  f = optimal_latent(log_theta, f);
+  const MaternKernel kernel(KernelParams::from_log(log_theta));
+  const Eigen::MatrixXd c = covariance(kernel, data_.points(), settings_.noise_variance);
+  const Eigen::LLT<Eigen::MatrixXd> llt(c);
+  const Eigen::Index n = c.rows();
+  const Eigen::MatrixXd c_inv = llt.solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::VectorXd alpha = c_inv * f;
+  const Eigen::MatrixXd l = llt.matrixL();
+  const double log_det = 2.0 * l.diagonal().array().log().sum();
+
+  Eigen::VectorXd prior_gradient;
+  const double value = btl_log_likelihood(data_.preferences(), f, settings_.btl_scale) -
+                       0.5 * f.dot(alpha) - 0.5 * log_det -
+                       0.5 * static_cast<double>(n) * std::log(2.0 * kPi) +
+                       log_prior(log_theta, settings_.prior_log_mean(data_.dims()),
+                                 settings_.prior_log_variance, &prior_gradient);
+  // d/dtheta_j [-1/2 f'C^-1 f - 1/2 log|C|] = 1/2 tr((alpha alpha' - C^-1) dC/dtheta_j).
+  const Eigen::MatrixXd m = alpha * alpha.transpose() - c_inv;
+  gradient = 0.5 * kernel.contract_log_gradients(data_.points(), m) + prior_gradient;
+  return value;
+}
+
+PreferenceModel::PreferenceModel(int dims, const ModelSettings& settings)
+    : dims_(dims),
+      kernel_(KernelParams::from_log(settings.prior_log_mean(dims))),
+      points_(dims, 0) {}
+
+PreferenceModel::PreferenceModel(const PreferenceData& data, const ModelSettings& settings,
+                                 KernelParams params, Eigen::VectorXd latent)
+    : dims_(data.dims()),
+      kernel_(std::move(params)),
+      points_(data.points()),
+      latent_(std::move(latent)) {
+  if (latent_.size() != points_.cols()) {
+    throw std::invalid_argument("latent values do not match the number of points");
+  }
+  if (points_.cols() > 0) {
+    const Eigen::Index n = points_.cols();
+    const Eigen::LLT<Eigen::MatrixXd> llt(covariance(kernel_, points_, settings.noise_variance));
+    c_inv_ = llt.solve(Eigen::MatrixXd::Identity(n, n));
+    alpha_ = c_inv_ * latent_;
+  }
+}
+
+PreferenceModel PreferenceModel::fit(const PreferenceData& data, const ModelSettings& settings,
+                                     const PreferenceModel& previous) {
+  const int n = data.point_count();
+  if (n == 0) return PreferenceModel(data.dims(), settings);
+  // Warm start: previous MAP values where we have them, the previous posterior mean elsewhere.
+  Eigen::VectorXd f(n);
+  for (int i = 0; i < n; ++i) {
+    f(i) = i < previous.latent_.size() ? previous.latent_(i) : previous.mean(data.points().col(i));
+  }
+  const MapObjective objective(data, settings);
+  const Eigen::VectorXd prior_mean = settings.prior_log_mean(data.dims());
+  // The log-normal priors are tight; +-5 prior SDs is a box MAP never wants to leave.
+  const double radius = 5.0 * std::sqrt(settings.prior_log_variance);
+  const Eigen::VectorXd lower = prior_mean.array() - radius;
+  const Eigen::VectorXd upper = prior_mean.array() + radius;
+  Eigen::VectorXd start = previous.params().to_log();
+  if (start.size() != prior_mean.size()) start = prior_mean;
+
+  Eigen::VectorXd best_f = f;
+  double best_value = -std::numeric_limits<double>::infinity();
+  const Objective fn = [&](const Eigen::VectorXd& log_theta, Eigen::VectorXd& grad) {
+    Eigen::VectorXd latent = f;
+    const double value = objective.evaluate(log_theta, latent, grad);
+    if (value > best_value) {
+      best_value = value;
+      best_f = latent;
+    }
+    f = latent;  // warm start the next inner solve
+    return value;
+  };
+  const MaximizeResult result =
+      maximize_bounded(fn, start, lower, upper, settings.max_hyper_iterations, 1e-4);
+  // Recompute the latent values at the returned theta exactly (the tracked best is the same
+  // point; this keeps the fit a pure function of its inputs).
+  Eigen::VectorXd latent = objective.optimal_latent(result.x, best_f);
+  return PreferenceModel(data, settings, KernelParams::from_log(result.x), std::move(latent));
+}
+
+double PreferenceModel::mean(const Eigen::VectorXd& x) const {
+  if (points_.cols() == 0) return 0.0;
+  return kernel_.cross(points_, x).dot(alpha_);
+}
+
+double PreferenceModel::variance(const Eigen::VectorXd& x) const {
+  if (points_.cols() == 0) return kernel_.variance();
+  const Eigen::VectorXd k = kernel_.cross(points_, x);
+  return std::max(0.0, kernel_.variance() - k.dot(c_inv_ * k));
+}
+
+void PreferenceModel::predict(const Eigen::VectorXd& x, double& mean, double& variance,
+                              Eigen::VectorXd* d_mean, Eigen::VectorXd* d_variance) const {
+  if (points_.cols() == 0) {
+    mean = 0.0;
+    variance = kernel_.variance();
+    if (d_mean != nullptr) d_mean->setZero(x.size());
+    if (d_variance != nullptr) d_variance->setZero(x.size());
+    return;
+  }
+  Eigen::VectorXd k;
+  Eigen::MatrixXd dk;
+  kernel_.cross_with_gradient(points_, x, k, dk);
+  const Eigen::VectorXd c_inv_k = c_inv_ * k;
+  mean = k.dot(alpha_);
+  const double raw_variance = kernel_.variance() - k.dot(c_inv_k);
+  variance = std::max(0.0, raw_variance);
+  if (d_mean != nullptr) *d_mean = dk * alpha_;
+  if (d_variance != nullptr) {
+    if (raw_variance > 0.0) {
+      *d_variance = -2.0 * dk * c_inv_k;
+    } else {
+      d_variance->setZero(x.size());
+    }
+  }
+}
+
+int PreferenceModel::best_observed_index() const {
+  if (points_.cols() == 0) return -1;
+  // At observed points the posterior mean is C^-1-smoothed f; compare those, not raw f.
+  int best = 0;
+  double best_mean = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < points_.cols(); ++i) {
+    const double m = mean(points_.col(i));
+    if (m > best_mean) {
+      best_mean = m;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+}  // namespace sps

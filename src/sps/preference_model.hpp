@@ -1,0 +1,85 @@
+// Gaussian-process preference model: latent goodness f at the observed points with prior
+// N(0, K_theta + b I) (ARD Matern 5/2 K, small white-noise term b), BTL likelihood of the
+// preferences, and MAP estimation of f and the kernel hyperparameters theta under log-normal
+// priors (Koyama et al. 2017/2020). Predictions treat the MAP f as noisy observations.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include "sps/matern_kernel.hpp"
+#include "sps/preference_data.hpp"
+
+namespace sps {
+
+struct ModelSettings {
+  double amplitude_prior = 0.2;      // median of the log-normal prior on the amplitude
+  double length_scale_prior = 0.5;   // median of the log-normal prior on each length scale
+  double prior_log_variance = 0.01;  // variance of both priors in log space
+  double btl_scale = 0.01;           // temperature s of the BTL likelihood
+  double noise_variance = 1e-4;      // b: white noise on the latent values
+  int max_hyper_iterations = 40;     // L-BFGS-B iterations for the hyperparameters
+
+  // Log-space prior mean of each hyperparameter [log a, log l_1..l_d].
+  Eigen::VectorXd prior_log_mean(int dims) const;
+};
+
+// The MAP objective as a function of the log hyperparameters, with f maximized out
+// (the profile). By the envelope theorem its gradient equals the partial gradient of the
+// joint objective at the inner optimum, which is what makes this cheap.
+class MapObjective {
+ public:
+  MapObjective(const PreferenceData& data, const ModelSettings& settings);
+
+  // Returns the objective at theta and fills `gradient`; `f` is the warm start for the inner
+  // Newton solve and receives the optimal latent values.
+  double evaluate(const Eigen::VectorXd& log_theta, Eigen::VectorXd& f,
+                  Eigen::VectorXd& gradient) const;
+  // The joint objective log p(D|f) + log N(f; 0, C) + log p(theta) at fixed f (for tests).
+  double joint(const Eigen::VectorXd& log_theta, const Eigen::VectorXd& f) const;
+  // Inner problem: maximizes over f at fixed theta (Newton with step halving).
+  Eigen::VectorXd optimal_latent(const Eigen::VectorXd& log_theta, Eigen::VectorXd f) const;
+
+ private:
+  const PreferenceData& data_;
+  ModelSettings settings_;
+};
+
+class PreferenceModel {
+ public:
+  // An empty model (no data): prior mean 0, prior variance.
+  PreferenceModel(int dims, const ModelSettings& settings);
+  // A model at given hyperparameters and latent values (no optimization).
+  PreferenceModel(const PreferenceData& data, const ModelSettings& settings, KernelParams params,
+                  Eigen::VectorXd latent);
+
+  // MAP fit, warm-started from `warm_params` and `warm_latent` (size <= point count; missing
+  // entries are predicted by `previous`).
+  static PreferenceModel fit(const PreferenceData& data, const ModelSettings& settings,
+                             const PreferenceModel& previous);
+
+  int dims() const { return dims_; }
+  int point_count() const { return static_cast<int>(points_.cols()); }
+  const KernelParams& params() const { return kernel_.params(); }
+  const Eigen::VectorXd& latent() const { return latent_; }
+  const Eigen::MatrixXd& points() const { return points_; }
+
+  double mean(const Eigen::VectorXd& x) const;
+  double variance(const Eigen::VectorXd& x) const;
+  // Mean and variance with their gradients w.r.t. x.
+  void predict(const Eigen::VectorXd& x, double& mean, double& variance, Eigen::VectorXd* d_mean,
+               Eigen::VectorXd* d_variance) const;
+
+  // Index of the observed point with the largest posterior mean (-1 without data).
+  int best_observed_index() const;
+
+ private:
+  int dims_;
+  MaternKernel kernel_;
+  Eigen::MatrixXd points_;  // d x N
+  Eigen::VectorXd latent_;  // MAP f
+  Eigen::VectorXd alpha_;   // C^-1 f
+  Eigen::MatrixXd c_inv_;   // C^-1
+};
+
+}  // namespace sps
