@@ -1,0 +1,38 @@
+#include "app/worker.hpp"
+
+#include <exception>
+
+namespace app {
+
+bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, int generation) {
+  if (job_.valid()) return false;
+  job_ = std::async(std::launch::async, [search = sps::PlaneSearch(search),
+                                         submission = std::move(submission), generation]() mutable {
+    Result result;
+    result.generation = generation;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      search.submit(submission.chosen, submission.extra_comparisons);
+      result.search = std::move(search);
+    } catch (const std::exception& e) {
+      result.error = e.what();
+    }
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  });
+  return true;
+}
+
+std::optional<SubmitWorker::Result> SubmitWorker::poll() {
+  if (!job_.valid()) return std::nullopt;
+  if (job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+  return job_.get();
+}
+
+std::optional<SubmitWorker::Result> SubmitWorker::wait() {
+  if (!job_.valid()) return std::nullopt;
+  return job_.get();
+}
+
+}  // namespace app

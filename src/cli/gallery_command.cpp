@@ -1,0 +1,93 @@
+// `gallery` (the default command): the Sequential Gallery window.
+#include <iostream>
+#include <string>
+
+#include "app/gallery_app.hpp"
+#include "app/session_store.hpp"
+#include "cli/arg_parser.hpp"
+#include "cli/command_registry.hpp"
+
+namespace {
+
+const char* const kUsage =
+    "usage: sequential-gallery [gallery] [options]\n"
+    "  --model FILE.npz        body model (default: the embedded default model)\n"
+    "  --components K          shape components explored (default 10)\n"
+    "  --grid 3|5              grid size (default 3)\n"
+    "  --clicks N              zoom clicks per plane (default 4)\n"
+    "  --seed N                random seed of a new search (default 1)\n"
+    "  --session FILE          session autosave file (default\n"
+    "                          $XDG_STATE_HOME/sequential-gallery/session.json)\n"
+    "  --resume ask|yes|no     what to do with an existing session (default ask)\n"
+    "  --save-path FILE.glb    default file name for \"Save glTF\" (default body.glb)\n"
+    "  --view front|side|three-quarter\n"
+    "  --window WxH            window size (default 1600x1000)\n"
+    "  --cell-size PX          grid cell size in pixels (default: fit the window)\n"
+    "  --samples N             MSAA samples per cell (default 4, 0 = off)\n"
+    "  --zoom-seconds S        zoom animation length (default 1.5)\n"
+    "  --screenshot FILE.png   F12 writes a screenshot of the window there\n"
+    "  --screenshot-after-frames N   write it after N frames (with --quit-after-screenshot)\n"
+    "  --benchmark-clicks N    click N cells automatically, print frame-time statistics of the\n"
+    "                          zoom animations and launch-to-first-grid time, then exit\n";
+
+int run(int argc, char** argv) {
+  const auto launch = std::chrono::steady_clock::now();
+  cli::ArgParser args(argc, argv, {"help", "quit-after-screenshot"});
+  if (args.has("help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  args.reject_unknown({"help", "model", "components", "grid", "clicks", "seed", "session", "resume",
+                       "save-path", "view", "window", "cell-size", "samples", "zoom-seconds",
+                       "screenshot", "screenshot-after-frames", "quit-after-screenshot",
+                       "benchmark-clicks"});
+  app::GalleryOptions o;
+  o.launch_time = launch;
+  if (const auto m = args.get("model")) o.model_path = *m;
+  o.components = args.get_int("components", 10);
+  o.grid_size = args.get_int("grid", 3);
+  if (o.grid_size != 3 && o.grid_size != 5) throw cli::ArgError("--grid must be 3 or 5");
+  o.zoom_levels = args.get_int("clicks", 4);
+  if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
+  if (o.components < 1) throw cli::ArgError("--components must be at least 1");
+  o.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
+  o.session_path = args.get_or("session", app::default_session_path().string());
+  const std::string resume = args.get_or("resume", "ask");
+  if (resume == "ask") {
+    o.resume = app::GalleryOptions::Resume::kAsk;
+  } else if (resume == "yes") {
+    o.resume = app::GalleryOptions::Resume::kYes;
+  } else if (resume == "no") {
+    o.resume = app::GalleryOptions::Resume::kNo;
+  } else {
+    throw cli::ArgError("--resume must be ask, yes or no");
+  }
+  o.save_path = args.get_or("save-path", "body.glb");
+  if (const auto v = args.get("view")) {
+    const auto preset = render::parse_view_preset(*v);
+    if (!preset) throw cli::ArgError("--view must be front, side or three-quarter");
+    o.view = *preset;
+  }
+  if (const auto w = args.get("window")) {
+    char x = 0;
+    if (std::sscanf(w->c_str(), "%d%c%d", &o.window_width, &x, &o.window_height) != 3 ||
+        o.window_width < 320 || o.window_height < 240) {
+      throw cli::ArgError("--window must look like 1600x1000");
+    }
+  }
+  o.cell_size = args.get_int("cell-size", 0);
+  o.samples = args.get_int("samples", 4);
+  o.zoom_seconds = args.get_double("zoom-seconds", 1.5);
+  if (!(o.zoom_seconds > 0.0)) throw cli::ArgError("--zoom-seconds must be positive");
+  o.screenshot_path = args.get_or("screenshot", "");
+  o.screenshot_after_frames = args.get_int("screenshot-after-frames", -1);
+  o.quit_after_screenshot = args.has("quit-after-screenshot");
+  o.benchmark_clicks = args.get_int("benchmark-clicks", 0);
+  if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::GalleryOptions::Resume::kNo;
+  return app::run_gallery(o);
+}
+
+const cli::CommandRegistration reg{"gallery", "the Sequential Gallery window (default command)",
+                                   &run};
+
+}  // namespace
