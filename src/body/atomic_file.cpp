@@ -35,16 +35,14 @@ void write_all(int fd, const void* data, std::size_t size, const std::string& la
   }
 }
 
-void write_file_atomically(const std::filesystem::path& path, const void* data,
-                           std::size_t size) {
+void write_file_atomically(const std::filesystem::path& path, const void* data, std::size_t size) {
   const std::string target = path.string();
   if (path.filename().empty()) throw FileWriteError(target + ": not a file name");
   std::filesystem::path dir = path.parent_path();
   if (dir.empty()) dir = ".";
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) {
-    throw FileWriteError(target + ": cannot write: the folder " + dir.string() +
-                         " does not exist");
+    throw FileWriteError(target + ": cannot write: the folder " + dir.string() + " does not exist");
   }
   if (std::filesystem::is_directory(path, ec)) {
     throw FileWriteError(target + ": cannot write: a folder has that name");

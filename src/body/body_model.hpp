@@ -21,17 +21,17 @@ class ModelError : public std::runtime_error {
 };
 
 struct Model {
-  std::string name;         // e.g. "SMPL (neutral)" or the file stem
-  std::string source;       // file path the model came from, or "<embedded default>"
-  Vertices v_template;      // V x 3
-  Eigen::MatrixXf shapedirs;  // 3V x K: row 3*v + axis, column = component (only the K kept)
-  Faces faces;              // F x 3, indices < V
+  std::string name;             // e.g. "SMPL (neutral)" or the file stem
+  std::string source;           // file path the model came from, or "<embedded default>"
+  Vertices v_template;          // V x 3
+  Eigen::MatrixXf shapedirs;    // 3V x K: row 3*v + axis, column = component (only the K kept)
+  Faces faces;                  // F x 3, indices < V
   Eigen::MatrixXf j_regressor;  // J x V (dense)
   Eigen::MatrixXf weights;      // V x J skinning weights
   std::vector<int> parents;     // J entries, -1 for the root
   std::vector<std::string> joint_names;  // J entries (SMPL's names when J == 24)
-  int total_components = 0;     // K in the file before truncation to the explored count
-  Eigen::VectorXf variance_share;  // optional: share of variance of each kept component
+  int total_components = 0;              // K in the file before truncation to the explored count
+  Eigen::VectorXf variance_share;        // optional: share of variance of each kept component
 
   // Joints are linear in betas too: joints = joint_template + joint_shapedirs * betas, with
   // joint_template = J_regressor * v_template and joint_shapedirs = J_regressor * shapedirs

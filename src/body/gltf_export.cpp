@@ -20,9 +20,7 @@ namespace {
 // Appends typed arrays to one buffer, each view starting 4-byte aligned.
 class BufferBuilder {
  public:
-  explicit BufferBuilder(tinygltf::Model& doc) : doc_(doc) {
-    doc_.buffers.emplace_back();
-  }
+  explicit BufferBuilder(tinygltf::Model& doc) : doc_(doc) { doc_.buffers.emplace_back(); }
 
   int add_view(const void* data, std::size_t bytes, int target) {
     auto& buf = doc_.buffers[0].data;
@@ -203,10 +201,10 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
         bb.add_accessor(wview, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, V);
   }
   {
-    const int view = bb.add_view(model.faces.data(), static_cast<std::size_t>(model.faces.size()) * 4,
-                                 TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                   TINYGLTF_TYPE_SCALAR,
+    const int view =
+        bb.add_view(model.faces.data(), static_cast<std::size_t>(model.faces.size()) * 4,
+                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
                                    static_cast<std::size_t>(model.faces.size()));
   }
 

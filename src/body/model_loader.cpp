@@ -29,9 +29,9 @@ std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
     const std::int64_t id = v[J + i];
     std::int64_t parent = v[i];
     if (id < 0 || id >= joints) {
-      fail_array(npz, name, "joint id " + std::to_string(id) + " at index (1, " +
-                                std::to_string(i) + ") is out of range [0, " +
-                                std::to_string(joints) + ")");
+      fail_array(npz, name,
+                 "joint id " + std::to_string(id) + " at index (1, " + std::to_string(i) +
+                     ") is out of range [0, " + std::to_string(joints) + ")");
     }
     if (parents[static_cast<std::size_t>(id)] != -2) {
       fail_array(npz, name, "joint id " + std::to_string(id) + " appears twice in row 1");
@@ -39,9 +39,9 @@ std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
     if (parent == kRootParentU32 || parent == -1) {
       parent = -1;
     } else if (parent < 0 || parent >= joints) {
-      fail_array(npz, name, "parent " + std::to_string(parent) + " of joint " +
-                                std::to_string(id) + " is out of range (root parent is -1 or " +
-                                "4294967295)");
+      fail_array(npz, name,
+                 "parent " + std::to_string(parent) + " of joint " + std::to_string(id) +
+                     " is out of range (root parent is -1 or " + "4294967295)");
     }
     parents[static_cast<std::size_t>(id)] = static_cast<int>(parent);
   }
@@ -60,8 +60,8 @@ std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
     }
   }
   if (roots != 1) {
-    fail_array(npz, name, "the joint hierarchy must have exactly one root, found " +
-                              std::to_string(roots));
+    fail_array(npz, name,
+               "the joint hierarchy must have exactly one root, found " + std::to_string(roots));
   }
   return parents;
 }
@@ -72,12 +72,13 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
   if (npz.contains("joint_names")) {
     const NpyArray a = npz.read("joint_names");
     if (a.header.kind != 'S' && a.header.kind != 'U') {
-      fail_array(npz, "joint_names", "must be an array of strings, found dtype " +
-                                         a.header.dtype_name());
+      fail_array(npz, "joint_names",
+                 "must be an array of strings, found dtype " + a.header.dtype_name());
     }
     if (a.header.shape.size() != 1 || a.header.shape[0] != J) {
-      fail_array(npz, "joint_names", "wrong shape: expected (" + std::to_string(J) +
-                                         ",), found " + a.header.shape_string());
+      fail_array(
+          npz, "joint_names",
+          "wrong shape: expected (" + std::to_string(J) + ",), found " + a.header.shape_string());
     }
     names = a.to_strings();
   }
@@ -132,9 +133,9 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
     m.faces.resize(F, 3);
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (f[i] < 0 || f[i] >= V) {
-        fail_array(npz, "f", "face index " + std::to_string(f[i]) + " at " +
-                                 index_string(a.header.shape, i) + " is out of range [0, " +
-                                 std::to_string(V) + ")");
+        fail_array(npz, "f",
+                   "face index " + std::to_string(f[i]) + " at " + index_string(a.header.shape, i) +
+                       " is out of range [0, " + std::to_string(V) + ")");
       }
       m.faces.data()[i] = static_cast<std::uint32_t>(f[i]);
     }
@@ -182,11 +183,10 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
 
 const std::vector<std::string>& smpl_joint_names() {
   static const std::vector<std::string> names = {
-      "pelvis",         "left_hip",       "right_hip",  "spine1",      "left_knee",
-      "right_knee",     "spine2",         "left_ankle", "right_ankle", "spine3",
-      "left_foot",      "right_foot",     "neck",       "left_collar", "right_collar",
-      "head",           "left_shoulder",  "right_shoulder", "left_elbow", "right_elbow",
-      "left_wrist",     "right_wrist",    "left_hand",  "right_hand"};
+      "pelvis",     "left_hip",    "right_hip",    "spine1",      "left_knee",     "right_knee",
+      "spine2",     "left_ankle",  "right_ankle",  "spine3",      "left_foot",     "right_foot",
+      "neck",       "left_collar", "right_collar", "head",        "left_shoulder", "right_shoulder",
+      "left_elbow", "right_elbow", "left_wrist",   "right_wrist", "left_hand",     "right_hand"};
   return names;
 }
 
@@ -205,8 +205,7 @@ Model load_model_from_memory(const void* data, std::size_t size, const std::stri
 
 Model load_default_model(int components) {
 #if defined(SG_HAVE_DEFAULT_MODEL)
-  const std::size_t size =
-      static_cast<std::size_t>(sg_default_model_end - sg_default_model_begin);
+  const std::size_t size = static_cast<std::size_t>(sg_default_model_end - sg_default_model_begin);
   Model m = load_model_from_memory(sg_default_model_begin, size, "<embedded default>", components);
   m.name = "default body";
   return m;

@@ -67,8 +67,9 @@ std::vector<float> finite_floats(const NpzArchive& npz, const std::string& name,
       out[i] = static_cast<float>(d[i]);
       if (!std::isfinite(out[i])) {
         fail_array(npz, name,
-                   std::string(std::isnan(d[i]) ? "contains NaN" : "contains Inf (or a value "
-                                                                   "beyond float range)") +
+                   std::string(std::isnan(d[i]) ? "contains NaN"
+                                                : "contains Inf (or a value "
+                                                  "beyond float range)") +
                        " at index " + index_string(a.header.shape, i));
       }
     }
@@ -78,8 +79,8 @@ std::vector<float> finite_floats(const NpzArchive& npz, const std::string& name,
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (!std::isfinite(out[i])) {
       fail_array(npz, name,
-                 std::string(std::isnan(out[i]) ? "contains NaN" : "contains Inf") +
-                     " at index " + index_string(a.header.shape, i));
+                 std::string(std::isnan(out[i]) ? "contains NaN" : "contains Inf") + " at index " +
+                     index_string(a.header.shape, i));
     }
   }
   return out;

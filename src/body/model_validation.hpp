@@ -21,8 +21,7 @@ void require_shape(const NpzArchive& npz, const std::string& name, const NpyHead
 
 // Requires a numeric dtype and returns the values (C order) as float, rejecting NaN and Inf
 // with the multi-index of the first bad value.
-std::vector<float> finite_floats(const NpzArchive& npz, const std::string& name,
-                                 const NpyArray& a);
+std::vector<float> finite_floats(const NpzArchive& npz, const std::string& name, const NpyArray& a);
 
 // Requires an integer dtype (or integral floats) and returns the values in C order.
 std::vector<std::int64_t> integer_values(const NpzArchive& npz, const std::string& name,

@@ -90,6 +90,11 @@ class HeaderText {
 };
 
 void parse_descr(const std::string& descr, NpyHeader& h) {
+  if (descr.size() == 2 && descr[1] == 'O') {  // '|O': pickled Python objects
+    h.kind = 'O';
+    h.item_size = 8;
+    return;
+  }
   if (descr.size() < 3) throw NpyError("unsupported dtype '" + descr + "'");
   const char order = descr[0];
   if (order != '<' && order != '>' && order != '|' && order != '=') {
@@ -107,8 +112,9 @@ void parse_descr(const std::string& descr, NpyHeader& h) {
   h.big_endian = order == '>' || (order == '=' && host_is_big_endian());
   switch (h.kind) {
     case 'f':
-      if (n != 4 && n != 8) throw NpyError("unsupported dtype '" + descr + "' (float" +
-                                           std::to_string(8 * n) + "; use float32 or float64)");
+      if (n != 4 && n != 8)
+        throw NpyError("unsupported dtype '" + descr + "' (float" + std::to_string(8 * n) +
+                       "; use float32 or float64)");
       h.item_size = n;
       break;
     case 'i':
@@ -264,7 +270,8 @@ std::size_t npy_header_size(const std::uint8_t* bytes, std::size_t size) {
   if (size < 10) return 0;
   if (std::memcmp(bytes, kMagic, 6) != 0) throw NpyError("not a .npy array (bad magic bytes)");
   const std::uint8_t major = bytes[6];
-  if (major == 1) return 10 + static_cast<std::size_t>(load_uint(bytes + 8, 2, host_is_big_endian()));
+  if (major == 1)
+    return 10 + static_cast<std::size_t>(load_uint(bytes + 8, 2, host_is_big_endian()));
   if (major == 2 || major == 3) {
     if (size < 12) return 0;
     return 12 + static_cast<std::size_t>(load_uint(bytes + 8, 4, host_is_big_endian()));
@@ -347,8 +354,12 @@ NpyArray parse_npy(const std::uint8_t* bytes, std::size_t size) {
   return a;
 }
 
-std::vector<float> NpyArray::to_float() const { return convert_numeric<float>(*this); }
-std::vector<double> NpyArray::to_double() const { return convert_numeric<double>(*this); }
+std::vector<float> NpyArray::to_float() const {
+  return convert_numeric<float>(*this);
+}
+std::vector<double> NpyArray::to_double() const {
+  return convert_numeric<double>(*this);
+}
 
 std::vector<std::int64_t> NpyArray::to_int64() const {
   if (header.kind == 'f') {

@@ -18,9 +18,9 @@ class NpyError : public std::runtime_error {
 };
 
 struct NpyHeader {
-  std::string descr;           // as written, e.g. "<f4", "|O", "<U12"
-  char kind = '?';             // 'f' float, 'i' signed, 'u' unsigned, 'b' bool, 'S', 'U', 'O'
-  std::size_t item_size = 0;   // bytes per element (for 'U': 4 * characters)
+  std::string descr;          // as written, e.g. "<f4", "|O", "<U12"
+  char kind = '?';            // 'f' float, 'i' signed, 'u' unsigned, 'b' bool, 'S', 'U', 'O'
+  std::size_t item_size = 0;  // bytes per element (for 'U': 4 * characters)
   bool big_endian = false;
   bool fortran_order = false;
   std::vector<std::size_t> shape;

@@ -82,13 +82,15 @@ struct NpzArchive::Impl {
     zip_stat_init(&st);
     if (zip_stat_index(zip, i, 0, &st) != 0) throw std::string(zip_strerror(zip));
     if (full_size) *full_size = (st.valid & ZIP_STAT_SIZE) ? st.size : 0;
-    if (compressed) *compressed = (st.valid & ZIP_STAT_COMP_METHOD) && st.comp_method != ZIP_CM_STORE;
-    std::uint64_t want = (st.valid & ZIP_STAT_SIZE) ? std::min<std::uint64_t>(st.size, limit) : limit;
+    if (compressed)
+      *compressed = (st.valid & ZIP_STAT_COMP_METHOD) && st.comp_method != ZIP_CM_STORE;
+    std::uint64_t want =
+        (st.valid & ZIP_STAT_SIZE) ? std::min<std::uint64_t>(st.size, limit) : limit;
     if (want > std::numeric_limits<std::size_t>::max() / 2) throw std::string("entry too large");
     // A directory claiming far more data than deflate can expand to is corrupt.
     if ((st.valid & ZIP_STAT_COMP_SIZE) && want > st.comp_size * 1100 + 4096) {
-      throw std::string("corrupt zip entry (claims " + std::to_string(st.size) +
-                        " bytes from " + std::to_string(st.comp_size) + " compressed)");
+      throw std::string("corrupt zip entry (claims " + std::to_string(st.size) + " bytes from " +
+                        std::to_string(st.comp_size) + " compressed)");
     }
     zip_file_t* f = zip_fopen_index(zip, i, 0);
     if (!f) throw zip_error_text(zip_error_code_zip(zip_get_error(zip)));
@@ -164,7 +166,9 @@ std::vector<std::string> NpzArchive::names() const {
   return out;
 }
 
-bool NpzArchive::contains(const std::string& name) const { return impl_->index_of(name) >= 0; }
+bool NpzArchive::contains(const std::string& name) const {
+  return impl_->index_of(name) >= 0;
+}
 
 std::vector<NpzEntryInfo> NpzArchive::list() const {
   std::vector<NpzEntryInfo> out;
@@ -191,9 +195,8 @@ NpyArray NpzArchive::read(const std::string& name) const {
   const std::string where = label_ + ": array '" + name + "': ";
   if (i < 0) throw ModelError(where + "missing (the file has no " + name + ".npy)");
   try {
-    const auto bytes = impl_->read_entry(static_cast<zip_uint64_t>(i),
-                                         std::numeric_limits<std::uint64_t>::max(), nullptr,
-                                         nullptr);
+    const auto bytes = impl_->read_entry(
+        static_cast<zip_uint64_t>(i), std::numeric_limits<std::uint64_t>::max(), nullptr, nullptr);
     return parse_npy(bytes.data(), bytes.size());
   } catch (const std::string& e) {
     throw ModelError(where + e);

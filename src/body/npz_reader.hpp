@@ -15,7 +15,7 @@
 namespace body {
 
 struct NpzEntryInfo {
-  std::string name;          // array name (the entry name without ".npy")
+  std::string name;               // array name (the entry name without ".npy")
   std::uint64_t stored_size = 0;  // uncompressed bytes of the .npy
   bool compressed = false;
   std::optional<NpyHeader> header;  // empty if the header could not be parsed

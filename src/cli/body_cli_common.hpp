@@ -1,0 +1,26 @@
+// Shared helpers of the body subcommands (export, measure, inspect): choosing the model and
+// reading the shape from --betas or --x.
+#pragma once
+
+#include <string>
+
+#include "body/body_model.hpp"
+#include "cli/arg_parser.hpp"
+
+namespace cli {
+
+// --model FILE (else the embedded default model), keeping --components N (default 10, or
+// more if more betas/x values are given; 0 = all).
+body::Model load_body_model(const ArgParser& args);
+
+// --betas b1 b2 ... or --x x1 x2 ... (normalized [0,1], beta = 6x - 3); none = the mean body.
+// Throws ArgError for both, for too many values, or for --x outside [0, 1].
+Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model);
+
+// Number of values given with --betas or --x.
+std::size_t shape_value_count(const ArgParser& args);
+
+// "0.25, -1, 0" for messages.
+std::string format_betas(const Eigen::VectorXf& betas);
+
+}  // namespace cli

@@ -1,0 +1,40 @@
+// `export`: write one body as glTF (.glb or .gltf) from the command line.
+#include <iostream>
+
+#include "body/gltf_export.hpp"
+#include "cli/arg_parser.hpp"
+#include "cli/body_cli_common.hpp"
+#include "cli/command_registry.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+  const cli::ArgParser args(argc, argv, {"no-morph"}, {"betas", "x"});
+  if (args.has("help")) {
+    std::cout << "usage: sequential-gallery export [--model FILE.npz] [--components N]\n"
+                 "                                 [--betas B1 B2 ... | --x X1 X2 ...]\n"
+                 "                                 [--no-morph] -o OUT.glb|OUT.gltf\n\n"
+                 "Writes the body as glTF 2.0 (metres, y up, feet on the ground, skeleton with\n"
+                 "skin weights, shape components as morph targets unless --no-morph).\n"
+                 "--x takes normalized coordinates in [0,1] (beta = 6x - 3). Without --model the\n"
+                 "embedded default model is used.\n";
+    return 0;
+  }
+  args.reject_unknown({"model", "components", "betas", "x", "no-morph", "output"});
+  const std::string out = args.require("output");
+  const body::Model model = cli::load_body_model(args);
+  const Eigen::VectorXf betas = cli::read_betas(args, model);
+  body::ExportOptions options;
+  options.morph_targets = !args.has("no-morph");
+  body::export_gltf(model, betas, out, options);
+  std::cout << "wrote " << out << ": model '" << model.name << "', " << model.vertex_count()
+            << " vertices, " << model.faces.rows() << " faces, " << model.joint_count()
+            << " joints, " << (options.morph_targets ? model.component_count() : 0)
+            << " morph targets; betas [" << cli::format_betas(betas) << "]\n";
+  return 0;
+}
+
+const cli::CommandRegistration reg{"export", "write a body as glTF (.glb/.gltf) for Blender etc.",
+                                   &run};
+
+}  // namespace

@@ -1,0 +1,46 @@
+// `measure`: print height and tape-measure girths of a body.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "body/measurements.hpp"
+#include "cli/arg_parser.hpp"
+#include "cli/body_cli_common.hpp"
+#include "cli/command_registry.hpp"
+
+namespace {
+
+void line(const char* label, double value, double at) {
+  if (std::isnan(at)) {
+    std::printf("%-7s n/a (no torso slice in the landmark band)\n", label);
+  } else {
+    std::printf("%-7s %.4f m  (%.1f cm, slice at %.3f m)\n", label, value, 100.0 * value, at);
+  }
+}
+
+int run(int argc, char** argv) {
+  const cli::ArgParser args(argc, argv, {}, {"betas", "x"});
+  if (args.has("help")) {
+    std::cout << "usage: sequential-gallery measure [--model FILE.npz] [--components N]\n"
+                 "                                  [--betas B1 B2 ... | --x X1 X2 ...]\n\n"
+                 "Prints height and chest, waist and hip circumferences (metres), measured\n"
+                 "as the convex hull of horizontal slices, as a tape measure does.\n";
+    return 0;
+  }
+  args.reject_unknown({"model", "components", "betas", "x"});
+  const body::Model model = cli::load_body_model(args);
+  const Eigen::VectorXf betas = cli::read_betas(args, model);
+  const body::Measurements m = body::measure(model, betas);
+  std::printf("model   %s (%d components)\n", model.name.c_str(), model.component_count());
+  std::printf("betas   [%s]\n", cli::format_betas(betas).c_str());
+  std::printf("height  %.4f m  (%.1f cm)\n", m.height, 100.0 * m.height);
+  line("chest", m.chest, m.chest_height);
+  line("waist", m.waist, m.waist_height);
+  line("hips", m.hips, m.hips_height);
+  return 0;
+}
+
+const cli::CommandRegistration reg{"measure", "print height and chest/waist/hip girths of a body",
+                                   &run};
+
+}  // namespace

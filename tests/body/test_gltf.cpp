@@ -1,0 +1,265 @@
+// glTF export: round trip through tinygltf, atomic writes, and the Khronos validator.
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "body/atomic_file.hpp"
+#include "body/gltf_export.hpp"
+#include "body/model_loader.hpp"
+#include "npz_fixtures.hpp"
+
+using Catch::Contains;
+
+namespace {
+
+body::Model cylinder(int joints = 24, int components = 10) {
+  fixtures::Cylinder c;
+  c.joints = joints;
+  c.components = components;
+  c.base_y = -0.9;
+  const auto path = fixtures::scratch_dir("gltf-model-" + std::to_string(joints)) / "cyl.npz";
+  fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
+  return body::load_model(path, components);
+}
+
+Eigen::VectorXf some_betas(int k) {
+  Eigen::VectorXf b(k);
+  for (int i = 0; i < k; ++i) b[i] = 0.3f * static_cast<float>(i % 3) - 0.25f;
+  return b;
+}
+
+tinygltf::Model read_back(const std::filesystem::path& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model doc;
+  std::string err, warn;
+  const bool ok = path.extension() == ".glb"
+                      ? loader.LoadBinaryFromFile(&doc, &err, &warn, path.string())
+                      : loader.LoadASCIIFromFile(&doc, &err, &warn, path.string());
+  INFO("tinygltf: " << err << warn);
+  REQUIRE(ok);
+  return doc;
+}
+
+template <typename T>
+std::vector<T> accessor_data(const tinygltf::Model& doc, int index, int comps) {
+  const auto& acc = doc.accessors.at(static_cast<std::size_t>(index));
+  const auto& view = doc.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
+  const auto& buf = doc.buffers.at(static_cast<std::size_t>(view.buffer));
+  std::vector<T> out(acc.count * static_cast<std::size_t>(comps));
+  std::memcpy(out.data(), buf.data.data() + view.byteOffset + acc.byteOffset,
+              out.size() * sizeof(T));
+  return out;
+}
+
+// Runs a command, returns its exit status and output.
+int run_command(const std::string& cmd, std::string& output) {
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return -1;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) output += buf;
+  const int status = pclose(p);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("gltf: round trip of a .glb with morph targets", "[gltf]") {
+  const auto model = cylinder();
+  const auto betas = some_betas(10);
+  const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
+  body::export_gltf(model, betas, path);
+  const auto doc = read_back(path);
+
+  auto mesh = body::evaluate(model, betas);
+  const float offset = body::place_on_ground(mesh);
+  REQUIRE(doc.meshes.size() == 1);
+  const auto& prim = doc.meshes[0].primitives.at(0);
+  const int V = model.vertex_count();
+
+  // Base + sum(weights * targets) reproduces the evaluated, grounded body.
+  auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  REQUIRE(base.size() == static_cast<std::size_t>(3 * V));
+  REQUIRE(prim.targets.size() == 10);
+  REQUIRE(doc.meshes[0].weights.size() == 10);
+  for (std::size_t k = 0; k < 10; ++k) {
+    CHECK(doc.meshes[0].weights[k] == Approx(betas[static_cast<Eigen::Index>(k)]));
+    const auto t = accessor_data<float>(doc, prim.targets[k].at("POSITION"), 3);
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      base[i] += static_cast<float>(doc.meshes[0].weights[k]) * t[i];
+    }
+  }
+  float max_err = 0.0f;
+  for (int v = 0; v < V; ++v) {
+    for (int a = 0; a < 3; ++a) {
+      max_err = std::max(max_err,
+                         std::abs(base[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
+    }
+  }
+  CHECK(max_err < 1e-5f);
+  CHECK(offset == Approx(-body::evaluate(model, betas).vertices.col(1).minCoeff()));
+
+  const auto normals = accessor_data<float>(doc, prim.attributes.at("NORMAL"), 3);
+  CHECK(normals[30] == Approx(mesh.normals(10, 0)));
+  const auto idx = accessor_data<std::uint32_t>(doc, prim.indices, 1);
+  REQUIRE(idx.size() == static_cast<std::size_t>(model.faces.size()));
+  CHECK(std::equal(idx.begin(), idx.end(), model.faces.data()));
+
+  // Skin: 24 joints named after SMPL, hierarchy from kintree_table, weights normalised top 4.
+  REQUIRE(doc.skins.size() == 1);
+  const auto& skin = doc.skins[0];
+  REQUIRE(skin.joints.size() == 24);
+  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[0])).name == "pelvis");
+  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[16])).name == "left_shoulder");
+  for (int j = 1; j < 24; ++j) {
+    const int parent_node =
+        skin.joints[static_cast<std::size_t>(model.parents[static_cast<std::size_t>(j)])];
+    const auto& ch = doc.nodes.at(static_cast<std::size_t>(parent_node)).children;
+    CHECK(std::find(ch.begin(), ch.end(), skin.joints[static_cast<std::size_t>(j)]) != ch.end());
+  }
+  // Global joint position = sum of translations up the chain = evaluated, grounded joint.
+  for (int j : {0, 7, 23}) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (int k = j; k >= 0; k = model.parents[static_cast<std::size_t>(k)]) {
+      const auto& t =
+          doc.nodes.at(static_cast<std::size_t>(skin.joints[static_cast<std::size_t>(k)]))
+              .translation;
+      p += Eigen::Vector3d(t[0], t[1], t[2]);
+    }
+    CHECK(p.cast<float>().isApprox(mesh.joints.row(j).transpose(), 1e-5f));
+  }
+  const auto ibm = accessor_data<float>(doc, skin.inverseBindMatrices, 16);
+  CHECK(ibm[16 * 7 + 13] == Approx(-mesh.joints(7, 1)));
+  CHECK(ibm[16 * 7 + 15] == Approx(1.0));
+
+  const auto w = accessor_data<float>(doc, prim.attributes.at("WEIGHTS_0"), 4);
+  const auto jj = accessor_data<std::uint8_t>(doc, prim.attributes.at("JOINTS_0"), 4);
+  for (int v = 0; v < V; ++v) {
+    const float* wv = &w[static_cast<std::size_t>(4 * v)];
+    CHECK(wv[0] + wv[1] + wv[2] + wv[3] == Approx(1.0f).epsilon(1e-6));
+    CHECK(wv[0] >= wv[1]);
+    for (int k = 0; k < 4; ++k) {
+      if (wv[k] == 0.0f) CHECK(jj[static_cast<std::size_t>(4 * v + k)] == 0);
+    }
+  }
+  // Vertex 4 of the fixture has five influences 0.4, 0.25, 0.15, 0.12, 0.08 on joints
+  // 4, 7, 10, 13, 16: the top four are kept and renormalised by 0.92.
+  CHECK(jj[16] == 4);
+  CHECK(jj[17] == 7);
+  CHECK(jj[19] == 13);
+  CHECK(w[16] == Approx(0.4 / 0.92).epsilon(1e-5));
+  CHECK(w[19] == Approx(0.12 / 0.92).epsilon(1e-5));
+
+  // extras: betas, model name, component count.
+  const auto& extras = doc.nodes.at(0).extras;
+  REQUIRE(extras.IsObject());
+  CHECK(extras.Get("model").Get<std::string>() == "cyl");
+  CHECK(extras.Get("components").GetNumberAsInt() == 10);
+  REQUIRE(extras.Get("betas").ArrayLen() == 10);
+  CHECK(extras.Get("betas").Get(2).GetNumberAsDouble() == Approx(betas[2]));
+  CHECK(doc.asset.extras.Get("components").GetNumberAsInt() == 10);
+  CHECK(doc.meshes[0].extras.Get("targetNames").Get(3).Get<std::string>() == "shape_03");
+}
+
+TEST_CASE("gltf: .gltf without morph targets holds the shaped body", "[gltf]") {
+  const auto model = cylinder(5, 4);
+  Eigen::VectorXf betas(4);
+  betas << 0.5f, -0.2f, 1.0f, 0.0f;
+  const auto path = fixtures::scratch_dir("gltf-text") / "body.gltf";
+  body::ExportOptions opt;
+  opt.morph_targets = false;
+  body::export_gltf(model, betas, path, opt);
+  CHECK(fixtures::read_file(path).find("\"asset\"") != std::string::npos);
+  const auto doc = read_back(path);
+  const auto& prim = doc.meshes.at(0).primitives.at(0);
+  CHECK(prim.targets.empty());
+  auto mesh = body::evaluate(model, betas);
+  body::place_on_ground(mesh);
+  const auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  for (int v = 0; v < model.vertex_count(); v += 50) {
+    CHECK(pos[static_cast<std::size_t>(3 * v + 1)] == Approx(mesh.vertices(v, 1)));
+  }
+  const auto& acc = doc.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
+  CHECK(acc.minValues.at(1) == Approx(0.0).margin(1e-7));  // feet on the ground
+  CHECK(doc.nodes.at(static_cast<std::size_t>(doc.skins.at(0).joints.at(3))).name == "joint_3");
+}
+
+TEST_CASE("gltf: failures never replace a good file", "[gltf][atomic]") {
+  const auto model = cylinder();
+  const auto dir = fixtures::scratch_dir("gltf-atomic");
+  const auto path = dir / "keep.glb";
+  body::export_gltf(model, some_betas(10), path);
+  const std::string before = fixtures::read_file(path);
+  REQUIRE(before.size() > 1000);
+
+  Eigen::VectorXf too_many = Eigen::VectorXf::Zero(11);
+  CHECK_THROWS_WITH(body::export_gltf(model, too_many, path),
+                    Contains(path.string()) && Contains("11 betas"));
+  CHECK(fixtures::read_file(path) == before);
+
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), dir / "missing" / "x.glb"),
+                    Contains("does not exist"));
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), dir / "x.obj"),
+                    Contains("unknown extension"));
+  std::filesystem::create_directories(dir / "taken.glb");
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), dir / "taken.glb"),
+                    Contains("taken.glb"));
+  // No temporary files left behind.
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    (void)e;
+    ++files;
+  }
+  CHECK(files == 2);  // keep.glb and the taken.glb folder
+}
+
+TEST_CASE("atomic write: a full disk gives a clear error", "[gltf][atomic]") {
+  const int fd = ::open("/dev/full", O_WRONLY);
+  REQUIRE(fd >= 0);
+  const std::string data(1 << 16, 'x');
+  CHECK_THROWS_WITH(body::write_all(fd, data.data(), data.size(), "out.glb"),
+                    Contains("out.glb") && Contains("disk full"));
+  ::close(fd);
+}
+
+TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][validator]") {
+  std::string out;
+  const int node = run_command("command -v node", out);
+  INFO(out);
+  if (node != 0) FAIL("node (Node.js) is not on PATH: run bash tools/setup.sh --test");
+  const std::string script = SG_VALIDATOR_SCRIPT;
+  if (!std::filesystem::exists(std::filesystem::path(script).parent_path() / "node_modules" /
+                               "gltf-validator")) {
+    FAIL("the glTF validator is not installed in tests/validator: run bash tools/setup.sh --test");
+  }
+
+  const auto dir = fixtures::scratch_dir("gltf-validate");
+  const auto smpl = cylinder(24, 10);
+  const auto other = cylinder(5, 16);
+  std::vector<std::filesystem::path> files;
+  for (bool morph : {true, false}) {
+    for (const char* ext : {".glb", ".gltf"}) {
+      body::ExportOptions opt;
+      opt.morph_targets = morph;
+      const auto p = dir / (std::string(morph ? "morph" : "plain") + ext);
+      body::export_gltf(smpl, some_betas(10), p, opt);
+      files.push_back(p);
+      const auto q = dir / (std::string(morph ? "j5_morph" : "j5_plain") + ext);
+      body::export_gltf(other, some_betas(16), q, opt);
+      files.push_back(q);
+    }
+  }
+  for (const auto& f : files) {
+    std::string report;
+    const int rc = run_command("node '" + script + "' '" + f.string() + "'", report);
+    INFO(report);
+    CHECK(rc == 0);
+    CHECK_THAT(report, Contains(": 0 errors, 0 warnings"));
+  }
+}
