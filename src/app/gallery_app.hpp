@@ -23,8 +23,9 @@ struct GalleryOptions {
 
   int window_width = 1600;
   int window_height = 1000;
-  int cell_size = 0;  // cell edge in pixels; 0 = fit the window
-  int samples = 4;    // MSAA samples per cell
+  int cell_size = 0;          // cell edge in pixels; 0 = fit the window
+  int samples = 4;            // MSAA samples per cell
+  int animation_samples = 0;  // MSAA samples while the grid animates (speed on llvmpipe)
   double zoom_seconds = 1.5;
   render::ViewPreset view = render::ViewPreset::kFront;
   std::string save_path = "body.glb";
@@ -32,6 +33,7 @@ struct GalleryOptions {
   std::filesystem::path screenshot_path;  // F12 writes it; see screenshot_after_frames
   int screenshot_after_frames = -1;       // >= 0: write the screenshot after that many frames
   bool quit_after_screenshot = false;
+  bool report_layout = false;  // print the grid cells' window rectangles (for scripted tests)
 
   // Benchmark: click automatically through `benchmark_clicks` cells, measure frame times
   // during the zoom animations and the launch-to-first-grid time, print them and exit.

@@ -24,23 +24,41 @@ const char* const kUsage =
     "  --window WxH            window size (default 1600x1000)\n"
     "  --cell-size PX          grid cell size in pixels (default: fit the window)\n"
     "  --samples N             MSAA samples per cell (default 4, 0 = off)\n"
+    "  --animation-samples N   MSAA samples while animating (default 0)\n"
     "  --zoom-seconds S        zoom animation length (default 1.5)\n"
     "  --screenshot FILE.png   F12 writes a screenshot of the window there\n"
     "  --screenshot-after-frames N   write it after N frames (with --quit-after-screenshot)\n"
+    "  --report-layout         print each grid cell's window position and size (for tests)\n"
     "  --benchmark-clicks N    click N cells automatically, print frame-time statistics of the\n"
     "                          zoom animations and launch-to-first-grid time, then exit\n";
 
 int run(int argc, char** argv) {
   const auto launch = std::chrono::steady_clock::now();
-  cli::ArgParser args(argc, argv, {"help", "quit-after-screenshot"});
+  cli::ArgParser args(argc, argv, {"help", "quit-after-screenshot", "report-layout"});
   if (args.has("help")) {
     std::cout << kUsage;
     return 0;
   }
-  args.reject_unknown({"help", "model", "components", "grid", "clicks", "seed", "session", "resume",
-                       "save-path", "view", "window", "cell-size", "samples", "zoom-seconds",
-                       "screenshot", "screenshot-after-frames", "quit-after-screenshot",
-                       "benchmark-clicks"});
+  args.reject_unknown({"help",
+                       "model",
+                       "components",
+                       "grid",
+                       "clicks",
+                       "seed",
+                       "session",
+                       "resume",
+                       "save-path",
+                       "view",
+                       "window",
+                       "cell-size",
+                       "samples",
+                       "animation-samples",
+                       "zoom-seconds",
+                       "screenshot",
+                       "screenshot-after-frames",
+                       "quit-after-screenshot",
+                       "benchmark-clicks",
+                       "report-layout"});
   app::GalleryOptions o;
   o.launch_time = launch;
   if (const auto m = args.get("model")) o.model_path = *m;
@@ -77,12 +95,14 @@ int run(int argc, char** argv) {
   }
   o.cell_size = args.get_int("cell-size", 0);
   o.samples = args.get_int("samples", 4);
+  o.animation_samples = args.get_int("animation-samples", 0);
   o.zoom_seconds = args.get_double("zoom-seconds", 1.5);
   if (!(o.zoom_seconds > 0.0)) throw cli::ArgError("--zoom-seconds must be positive");
   o.screenshot_path = args.get_or("screenshot", "");
   o.screenshot_after_frames = args.get_int("screenshot-after-frames", -1);
   o.quit_after_screenshot = args.has("quit-after-screenshot");
   o.benchmark_clicks = args.get_int("benchmark-clicks", 0);
+  o.report_layout = args.has("report-layout");
   if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::GalleryOptions::Resume::kNo;
   return app::run_gallery(o);
 }

@@ -1,0 +1,242 @@
+// Session logic without any window: clicks -> chosen point, extra comparisons, undo, start
+// over, autosave round trip, corrupt files set aside and reported.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "app/session.hpp"
+#include "app/session_store.hpp"
+#include "app/worker.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+app::SessionSettings small_settings() {
+  app::SessionSettings s;
+  s.components = 4;
+  s.grid_size = 3;
+  s.zoom_levels = 4;
+  s.seed = 7;
+  return s;
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() /
+           ("sg_app_tests_" +
+            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Completes the current plane by clicking `cells`, running submit() synchronously.
+void finish_plane(app::Session& session, const std::vector<sps::GridCell>& cells) {
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const auto r = session.click(cells[i]);
+    REQUIRE(r ==
+            (i + 1 == cells.size() ? app::ClickResult::kPlaneFinished : app::ClickResult::kZoomed));
+  }
+  const auto sub = session.submission();
+  sps::PlaneSearch next = session.search();
+  next.submit(sub.chosen, sub.extra_comparisons);
+  session.finish_plane(std::move(next));
+}
+
+}  // namespace
+
+TEST_CASE("clicks zoom in and the last click is the chosen point", "[app]") {
+  app::Session session(small_settings());
+  CHECK(session.cells().size() == 9u);
+  const auto plane = session.search().current_plane();
+  const std::vector<sps::GridCell> path{{0, 0}, {2, 1}, {1, 1}, {2, 2}};
+  for (int i = 0; i < 3; ++i)
+    CHECK(session.click(path[static_cast<size_t>(i)]) == app::ClickResult::kZoomed);
+  CHECK_FALSE(session.submission_pending());
+  CHECK(session.view().spacing == Approx(0.125));  // 1, halved three times
+  CHECK(session.click(path[3]) == app::ClickResult::kPlaneFinished);
+  CHECK(session.submission_pending());
+  CHECK(session.click({0, 0}) == app::ClickResult::kIgnored);
+
+  const auto sub = session.submission();
+  const auto expected = sps::chosen_point(plane, 3, path).x;
+  CHECK((sub.chosen - expected).norm() < 1e-12);
+  CHECK((session.current_best() - expected).norm() < 1e-12);
+  // One extra comparison per zoom level, the clicked cell first.
+  REQUIRE(sub.extra_comparisons.size() == 4u);
+  const auto level0 = sps::grid_points(plane, 3, std::vector<sps::GridCell>{});
+  CHECK((sub.extra_comparisons[0][0] - level0[0].x).norm() < 1e-12);
+  CHECK(sub.extra_comparisons[0].size() >= 2u);
+  for (const auto& comparison : sub.extra_comparisons) {
+    for (const auto& x : comparison) {
+      CHECK(x.minCoeff() >= 0.0);
+      CHECK(x.maxCoeff() <= 1.0);
+    }
+  }
+}
+
+TEST_CASE("out-of-grid clicks are ignored", "[app]") {
+  app::Session session(small_settings());
+  CHECK(session.click({3, 0}) == app::ClickResult::kIgnored);
+  CHECK(session.click({0, -1}) == app::ClickResult::kIgnored);
+  CHECK(session.clicks_on_plane() == 0);
+}
+
+TEST_CASE("a finished plane goes into the history and a new plane starts", "[app]") {
+  app::Session session(small_settings());
+  finish_plane(session, {{1, 1}, {0, 0}, {2, 2}, {1, 0}});
+  CHECK(session.planes_done() == 1);
+  CHECK(session.clicks_on_plane() == 0);
+  CHECK(session.search().iteration() == 1);
+  REQUIRE(session.history().size() == 1u);
+  CHECK(session.history()[0].path.size() == 4u);
+  CHECK((session.current_best() - session.search().x_plus()).norm() < 1e-12);
+}
+
+TEST_CASE("undo click, undo across a plane, undo plane, start over", "[app]") {
+  app::Session session(small_settings());
+  const auto first_plane = session.search().current_plane();
+  CHECK_FALSE(session.undo_click());
+  CHECK_FALSE(session.undo_plane());
+
+  session.click({0, 0});
+  session.click({1, 2});
+  CHECK(session.undo_click());
+  CHECK(session.clicks_on_plane() == 1);
+  CHECK(session.undo_plane());
+  CHECK(session.clicks_on_plane() == 0);
+
+  finish_plane(session, {{2, 0}, {1, 1}, {0, 1}, {2, 2}});
+  // Undoing a click right after a finished plane reopens it with its first three clicks.
+  CHECK(session.undo_click());
+  CHECK(session.planes_done() == 0);
+  CHECK(session.clicks_on_plane() == 3);
+  CHECK((session.search().current_plane().c - first_plane.c).norm() < 1e-12);
+  CHECK((session.search().current_plane().u - first_plane.u).norm() < 1e-12);
+  session.click({2, 2});
+  const auto sub = session.submission();
+  sps::PlaneSearch next = session.search();
+  next.submit(sub.chosen, sub.extra_comparisons);
+  session.finish_plane(std::move(next));
+  CHECK(session.planes_done() == 1);
+
+  CHECK(session.undo_plane());
+  CHECK(session.planes_done() == 0);
+  CHECK(session.clicks_on_plane() == 0);
+
+  finish_plane(session, {{2, 0}, {1, 1}, {0, 1}, {2, 2}});
+  session.start_over();
+  CHECK(session.planes_done() == 0);
+  CHECK(session.search().iteration() == 0);
+  CHECK(session.clicks_on_plane() == 0);
+}
+
+TEST_CASE("session JSON round trip reproduces state and the next plane", "[app]") {
+  app::Session session(small_settings());
+  finish_plane(session, {{0, 2}, {1, 1}, {2, 1}, {0, 0}});
+  session.click({2, 2});
+  session.click({1, 0});
+  const std::string text = session.to_json();
+  const app::Session back = app::Session::from_json(text);
+  CHECK(back.to_json() == text);
+  CHECK(back.planes_done() == 1);
+  CHECK(back.clicks_on_plane() == 2);
+  CHECK((back.current_best() - session.current_best()).norm() < 1e-12);
+  CHECK((back.search().current_plane().u - session.search().current_plane().u).norm() < 1e-12);
+}
+
+TEST_CASE("autosave writes atomically and loads back", "[app]") {
+  TempDir dir;
+  const fs::path file = dir.path / "nested" / "session.json";
+  app::Session session(small_settings());
+  session.click({1, 2});
+  app::save_session(session, file);
+  CHECK(fs::exists(file));
+  // No temporary files are left behind.
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(file.parent_path())) {
+    (void)e;
+    ++entries;
+  }
+  CHECK(entries == 1);
+  const auto loaded = app::load_session(file);
+  CHECK(loaded.problem.empty());
+  REQUIRE(loaded.session.has_value());
+  CHECK(loaded.session->clicks_on_plane() == 1);
+
+  SECTION("a missing file is no problem and no session") {
+    const auto none = app::load_session(dir.path / "nothing.json");
+    CHECK_FALSE(none.session.has_value());
+    CHECK(none.problem.empty());
+  }
+  SECTION("saving into an unwritable place reports the file") {
+    CHECK_THROWS_WITH(app::write_file_atomically("/proc/version/x/session.json", "{}"),
+                      Catch::Contains("/proc/version/x/session.json"));
+  }
+}
+
+TEST_CASE("a corrupt session file is set aside and reported, never overwritten", "[app]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  app::Session session(small_settings());
+  const std::string good = session.to_json();
+
+  const std::vector<std::string> corrupt{"", "{not json", good.substr(0, good.size() / 2),
+                                         "{\"format\": \"something else\"}", [&] {
+                                           std::string s = good;
+                                           const auto at = s.find("\"grid_size\": 3");
+                                           REQUIRE(at != std::string::npos);
+                                           s.replace(at, 14, "\"grid_size\": 4");
+                                           return s;
+                                         }()};
+  for (const auto& text : corrupt) {
+    {
+      std::ofstream out(file, std::ios::binary);
+      out << text;
+    }
+    const auto result = app::load_session(file);
+    CHECK_FALSE(result.session.has_value());
+    CHECK_THAT(result.problem, Catch::Contains("corrupt") && Catch::Contains(file.string()));
+    CHECK_FALSE(fs::exists(file));
+    REQUIRE(fs::exists(result.set_aside));
+    CHECK(read_text(result.set_aside) == text);  // the bytes are kept
+    fs::remove(result.set_aside);
+  }
+}
+
+TEST_CASE("the worker computes the next plane off the calling thread", "[app]") {
+  app::Session session(small_settings());
+  for (const auto& c : std::vector<sps::GridCell>{{0, 0}, {1, 1}, {1, 1}, {2, 1}}) session.click(c);
+  app::SubmitWorker worker;
+  CHECK(worker.start(session.search(), session.submission(), 3));
+  CHECK_FALSE(worker.start(session.search(), session.submission(), 4));  // one at a time
+  std::optional<app::SubmitWorker::Result> result;
+  for (int i = 0; i < 600 && !result; ++i) {
+    result = worker.poll();
+    if (!result) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  REQUIRE(result.has_value());
+  CHECK(result->generation == 3);
+  REQUIRE(result->search.has_value());
+  CHECK(result->search->iteration() == 1);
+  CHECK(session.search().iteration() == 0);  // the session's own search is untouched
+  session.finish_plane(std::move(*result->search));
+  CHECK(session.planes_done() == 1);
+  CHECK_FALSE(worker.busy());
+}
