@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# ctest body_cli: the headless body subcommands on a fixture model written by
+# body_fixture_writer (a closed cylinder, radius 0.15 m, 32 segments, height 1.7 m).
+# usage: cli_test.sh SEQUENTIAL_GALLERY FIXTURE_WRITER WORK_DIR VALIDATE_JS
+set -euo pipefail
+exe=$1 writer=$2 dir=$3 validator=$4
+rm -rf "$dir"
+mkdir -p "$dir"
+"$writer" "$dir/cyl.npz"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+expect() {  # expect TEXT PATTERN
+  grep -Eq -- "$2" <<<"$1" || fail "output does not match /$2/:
+$1"
+}
+
+echo "== inspect"
+out=$("$exe" inspect --model "$dir/cyl.npz")
+echo "$out"
+expect "$out" "shapedirs +float32 +\(1314, 3, 10\) +deflate"
+expect "$out" "usable  yes: 1314 vertices, 2624 faces, 24 joints \(root 'pelvis'\), 10 shape components"
+
+echo "== measure (radius x 1.25 -> girth 64 * 0.1875 * sin(pi/32) = 1.1762 m)"
+out=$("$exe" measure --model "$dir/cyl.npz" --betas 0.25 0)
+echo "$out"
+expect "$out" "height  1\.7000 m"
+expect "$out" "chest   1\.1762 m"
+expect "$out" "waist   1\.1762 m"
+expect "$out" "hips    1\.1762 m"
+out=$("$exe" measure --model "$dir/cyl.npz" --x 0.5 0.6)  # beta1 = 0.6 -> height x 1.6
+expect "$out" "height  2\.7200 m"
+
+echo "== export"
+"$exe" export --model "$dir/cyl.npz" --betas 0.5 -0.5 1 -o "$dir/body.glb"
+"$exe" export --model "$dir/cyl.npz" --x 0.2 0.9 --no-morph -o "$dir/body.gltf"
+[ -s "$dir/body.glb" ] || fail "body.glb not written"
+[ "$(head -c 4 "$dir/body.glb")" = "glTF" ] || fail "body.glb is not binary glTF"
+grep -q '"targetNames"' "$dir/body.glb" || fail "no morph targets in body.glb"
+grep -q '"left_shoulder"' "$dir/body.gltf" || fail "no SMPL joint names in body.gltf"
+if grep -q '"targets"' "$dir/body.gltf"; then fail "--no-morph still wrote morph targets"; fi
+command -v node >/dev/null || fail "node is not installed (bash tools/setup.sh --test)"
+node "$validator" "$dir/body.glb" "$dir/body.gltf"
+
+echo "== errors"
+before=$(md5sum <"$dir/body.glb")
+if out=$("$exe" export --model "$dir/cyl.npz" --betas 1 2 3 4 5 6 7 8 9 10 11 --components 10 \
+          -o "$dir/body.glb" 2>&1); then fail "too many betas accepted"; fi
+echo "$out"
+expect "$out" "11 shape values"
+[ "$(md5sum <"$dir/body.glb")" = "$before" ] || fail "a failed export changed body.glb"
+if out=$("$exe" export --model "$dir/cyl.npz" -o "$dir/nowhere/x.glb" 2>&1); then
+  fail "export into a missing folder succeeded"
+fi
+expect "$out" "does not exist"
+if out=$("$exe" measure --model "$dir/cyl.npz" --x 1.5 2>&1); then fail "--x 1.5 accepted"; fi
+expect "$out" "outside \[0, 1\]"
+head -c 3000 "$dir/cyl.npz" >"$dir/cut.npz"
+if out=$("$exe" inspect --model "$dir/cut.npz" 2>&1); then fail "truncated file called usable"; fi
+echo "$out"
+expect "$out" "usable  no: .*cut.npz"
+if out=$("$exe" measure --model "$dir/missing.npz" 2>&1); then fail "missing model accepted"; fi
+expect "$out" "missing.npz: file not found"
+echo "body_cli: all checks passed"
