@@ -152,6 +152,15 @@ class GalleryApp {
   void message(MessageKind kind, std::string text);
 
   static void on_drop(GLFWwindow* window, int count, const char** paths);
+  static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+
+  struct KeyPress {
+    int key;
+    int mods;
+    bool repeat;
+  };
+  std::vector<KeyPress> key_presses_;
+  bool screenshot_requested_ = false;
 
   GalleryOptions options_;
   GLFWwindow* window_ = nullptr;
@@ -240,6 +249,7 @@ bool GalleryApp::create_window() {
   glfwSwapInterval(options_.benchmark_clicks > 0 ? 0 : 1);
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, &GalleryApp::on_drop);
+  glfwSetKeyCallback(window_, &GalleryApp::on_key);  // before ImGui, which chains to it
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -864,26 +874,45 @@ void GalleryApp::draw_resume_prompt() {
   }
 }
 
+// Keys come from our own GLFW callback (ImGui's backend chains to it), queued per event:
+// ImGui 1.86 keeps only key states, so a press and release inside one frame (as scripted
+// input or a fast typist produces) would be lost.
+void GalleryApp::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+  auto* self = static_cast<GalleryApp*>(glfwGetWindowUserPointer(window));
+  if (self != nullptr && (action == GLFW_PRESS || action == GLFW_REPEAT)) {
+    self->key_presses_.push_back({key, mods, action == GLFW_REPEAT});
+  }
+}
+
 void GalleryApp::handle_shortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
+  std::vector<KeyPress> presses;
+  presses.swap(key_presses_);
   if (pending_resume_) return;
-  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) save_gltf();
-  if (io.WantTextInput) return;
-  const bool busy = session_->submission_pending();
-  if (!busy && ((io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) ||
-                ImGui::IsKeyPressed(GLFW_KEY_BACKSPACE, false))) {
-    undo_click();
-  }
-  if (session_->settings().grid_size == 3 && !io.KeyCtrl) {
-    for (int k = 0; k < 9; ++k) {
-      if (ImGui::IsKeyPressed(GLFW_KEY_1 + k, false) ||
-          ImGui::IsKeyPressed(GLFW_KEY_KP_1 + k, false)) {
+  for (const KeyPress& p : presses) {
+    const bool ctrl = (p.mods & GLFW_MOD_CONTROL) != 0;
+    if (ctrl && p.key == GLFW_KEY_S && !p.repeat) {
+      save_gltf();
+      continue;
+    }
+    if (p.key == GLFW_KEY_F12 && !options_.screenshot_path.empty()) {
+      screenshot_requested_ = true;
+      continue;
+    }
+    if (io.WantTextInput) continue;  // typing into a path field
+    const bool busy = session_->submission_pending();
+    if ((ctrl && p.key == GLFW_KEY_Z) || (!ctrl && p.key == GLFW_KEY_BACKSPACE)) {
+      if (!busy) undo_click();
+      continue;
+    }
+    if (!ctrl && !p.repeat && session_->settings().grid_size == 3) {
+      int k = -1;
+      if (p.key >= GLFW_KEY_1 && p.key <= GLFW_KEY_9) k = p.key - GLFW_KEY_1;
+      if (p.key >= GLFW_KEY_KP_1 && p.key <= GLFW_KEY_KP_9) k = p.key - GLFW_KEY_KP_1;
+      if (k >= 0) {
         click_cell(k % 3, k / 3);
       }
     }
-  }
-  if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) && !options_.screenshot_path.empty()) {
-    write_screenshot(options_.screenshot_path);
   }
 }
 
@@ -1028,6 +1057,10 @@ int GalleryApp::run() {
       launch_to_first_grid_ = seconds_since(options_.launch_time);
       std::cerr << "first grid shown " << static_cast<int>(launch_to_first_grid_ * 1000.0)
                 << " ms after launch\n";
+    }
+    if (screenshot_requested_) {
+      screenshot_requested_ = false;
+      write_screenshot(options_.screenshot_path);
     }
     if (options_.screenshot_after_frames >= 0 && frame_ == options_.screenshot_after_frames &&
         !options_.screenshot_path.empty()) {
