@@ -1,0 +1,235 @@
+// The embedded default body model: the generator reproduces the committed asset, the template
+// is a closed manifold, the rig is sane, and bodies across the +-3 box stay plausible.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <random>
+
+#include "default_model/default_model.hpp"
+#include "model_checks.hpp"
+
+#ifdef SG_HAVE_BODY_LIBRARY
+#include "body/body_model.hpp"
+#include "body/model_loader.hpp"
+#endif
+
+using default_model::GeneratedModel;
+namespace mc = model_checks;
+
+namespace {
+
+const GeneratedModel& generated() {
+  static const GeneratedModel model = default_model::generate_default_model();
+  return model;
+}
+
+mc::Tris faces_of(const GeneratedModel& m) {
+  mc::Tris t(m.faces.rows());
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    for (int a = 0; a < 3; ++a) t[f][a] = static_cast<int>(m.faces(f, a));
+  return t;
+}
+
+mc::Points shape(const GeneratedModel& m, const Eigen::VectorXf& betas) {
+  const Eigen::Index V = m.v_template.rows();
+  const Eigen::VectorXf offsets = m.shapedirs.leftCols(betas.size()) * betas;
+  mc::Points p(V);
+  for (Eigen::Index v = 0; v < V; ++v)
+    for (int a = 0; a < 3; ++a) p[v][a] = double(m.v_template(v, a)) + double(offsets[3 * v + a]);
+  return p;
+}
+
+// The betas the plausibility test covers: each of the first 10 components at -3 and +3, and
+// 30 uniform random points of [-3, 3]^10 (fixed seed).
+std::vector<Eigen::VectorXf> test_betas() {
+  std::vector<Eigen::VectorXf> out;
+  for (int k = 0; k < 10; ++k)
+    for (float s : {-3.0f, 3.0f}) {
+      Eigen::VectorXf b = Eigen::VectorXf::Zero(10);
+      b[k] = s;
+      out.push_back(b);
+    }
+  std::mt19937_64 rng(12345);
+  for (int i = 0; i < 30; ++i) {
+    Eigen::VectorXf b(10);
+    for (int k = 0; k < 10; ++k)
+      b[k] = float(-3.0 + 6.0 * double(rng() >> 11) / 9007199254740992.0);
+    out.push_back(b);
+  }
+  return out;
+}
+
+// Body regions by each vertex's dominant skinning joint; a face belongs to a region when all
+// three of its vertices do.
+enum Region { kTorso, kLeftArm, kRightArm, kLeftLeg, kRightLeg };
+Region region_of_joint(int j) {
+  switch (j) {
+    case 16:
+    case 18:
+    case 20:
+    case 22:
+      return kLeftArm;
+    case 17:
+    case 19:
+    case 21:
+    case 23:
+      return kRightArm;
+    case 1:
+    case 4:
+    case 7:
+    case 10:
+      return kLeftLeg;
+    case 2:
+    case 5:
+    case 8:
+    case 11:
+      return kRightLeg;
+    default:
+      return kTorso;
+  }
+}
+
+std::array<std::vector<int>, 5> face_regions(const GeneratedModel& m, const mc::Tris& faces) {
+  std::vector<int> vr(m.weights.rows());
+  for (Eigen::Index v = 0; v < m.weights.rows(); ++v) {
+    Eigen::Index j;
+    m.weights.row(v).maxCoeff(&j);
+    vr[v] = region_of_joint(static_cast<int>(j));
+  }
+  std::array<std::vector<int>, 5> out;
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+    const int r = vr[faces[f][0]];
+    if (vr[faces[f][1]] == r && vr[faces[f][2]] == r) out[r].push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the generator reproduces assets/default_body.npz byte for byte", "[model]") {
+  std::ifstream in(SG_DEFAULT_MODEL_ASSET, std::ios::binary);
+  REQUIRE(in.good());
+  const std::vector<std::uint8_t> committed((std::istreambuf_iterator<char>(in)), {});
+  const GeneratedModel& m = generated();
+  CHECK(committed.size() == m.npz.size());
+  CHECK(committed.size() < 5u * 1024u * 1024u);
+  CHECK(committed == m.npz);
+}
+
+TEST_CASE("the template is a closed, consistently wound manifold of 5k-15k vertices", "[model]") {
+  const GeneratedModel& m = generated();
+  const mc::Tris faces = faces_of(m);
+  const mc::Topology t = mc::topology(static_cast<int>(m.v_template.rows()), faces);
+  CHECK(t.vertices >= 5000);
+  CHECK(t.vertices <= 15000);
+  CHECK(t.non_manifold_edges == 0);
+  CHECK(t.inconsistent_edges == 0);
+  CHECK(t.non_manifold_vertices == 0);
+  CHECK(t.unused_vertices == 0);
+  CHECK(t.euler() == 2);  // one closed surface of genus 0
+  const mc::Points mean = shape(m, Eigen::VectorXf::Zero(0));
+  CHECK(mc::signed_volume(mean, faces) > 0.04);  // m^3, outward winding and adult size
+  CHECK(mc::stature(mean) == Approx(1.70).margin(0.03));
+  int lowest = 0;
+  for (std::size_t v = 0; v < mean.size(); ++v)
+    if (mean[v].y() < mean[lowest].y()) lowest = static_cast<int>(v);
+  CHECK(std::abs(mean[lowest].y()) < 0.01);  // soles on the ground
+}
+
+TEST_CASE("the rig: 24 joints, convex regressor rows, normalised sparse weights", "[model]") {
+  const GeneratedModel& m = generated();
+  const Eigen::Index V = m.v_template.rows();
+  REQUIRE(m.j_regressor.rows() == 24);
+  REQUIRE(m.j_regressor.cols() == V);
+  REQUIRE(m.weights.rows() == V);
+  REQUIRE(m.weights.cols() == 24);
+  CHECK(m.j_regressor.minCoeff() >= 0.0f);
+  for (int j = 0; j < 24; ++j) CHECK(m.j_regressor.row(j).sum() == Approx(1.0).margin(1e-4));
+  CHECK(m.weights.minCoeff() >= 0.0f);
+  for (Eigen::Index v = 0; v < V; ++v) {
+    REQUIRE(m.weights.row(v).sum() == Approx(1.0).margin(1e-4));
+    REQUIRE((m.weights.row(v).array() > 0).count() <= 4);
+  }
+  CHECK(m.joint_fit_error < 1e-3);
+  // Joints where a body has them: head above neck above pelvis above knees above ankles, left
+  // joints on +x.
+  const auto& J = m.joints;
+  CHECK(J(15, 1) > J(12, 1));
+  CHECK(J(12, 1) > J(0, 1));
+  CHECK(J(0, 1) > J(4, 1));
+  CHECK(J(4, 1) > J(7, 1));
+  for (int left : {1, 4, 7, 10, 13, 16, 18, 20, 22}) {
+    CHECK(J(left, 0) > 0.02f);
+    CHECK(J(left + 1, 0) == Approx(-J(left, 0)).margin(1e-3));
+  }
+}
+
+TEST_CASE("the shape space: at least 10 components, betas ~ N(0, 1), variance shares", "[model]") {
+  const GeneratedModel& m = generated();
+  const Eigen::Index K = m.shapedirs.cols();
+  REQUIRE(K >= 10);
+  REQUIRE(m.variance_share.size() == K);
+  CHECK(m.variance_share.sum() <= 1.0001f);
+  CHECK(m.variance_share.head(10).sum() > 0.95f);
+  for (Eigen::Index k = 1; k < K; ++k) CHECK(m.variance_share[k] <= m.variance_share[k - 1]);
+  // Columns are orthogonal with squared norms proportional to the variance shares.
+  const Eigen::MatrixXd G = m.shapedirs.cast<double>().transpose() * m.shapedirs.cast<double>();
+  for (Eigen::Index a = 0; a < K; ++a)
+    for (Eigen::Index b = 0; b < a; ++b)
+      CHECK(std::abs(G(a, b)) < 1e-3 * std::sqrt(G(a, a) * G(b, b)) + 1e-9);
+  for (Eigen::Index k = 1; k < 10; ++k)
+    CHECK(G(k, k) / G(0, 0) == Approx(m.variance_share[k] / m.variance_share[0]).epsilon(1e-3));
+  // Population statures: the ANSUR II based mixture, 1.5 m to 1.95 m, mean about 1.70 m.
+  double sum = 0;
+  for (double s : m.population_statures) sum += s;
+  CHECK(m.population_statures.size() >= 2000);
+  CHECK(sum / m.population_statures.size() == Approx(1.70).margin(0.02));
+}
+
+TEST_CASE("bodies at +-3 per component and at random betas in [-3, 3]^10 are plausible",
+          "[model]") {
+  const GeneratedModel& m = generated();
+  const mc::Tris faces = faces_of(m);
+  const mc::Points mean = shape(m, Eigen::VectorXf::Zero(0));
+  const auto regions = face_regions(m, faces);
+  std::vector<int> torso_and_legs = regions[kTorso];
+  torso_and_legs.insert(torso_and_legs.end(), regions[kLeftLeg].begin(), regions[kLeftLeg].end());
+  torso_and_legs.insert(torso_and_legs.end(), regions[kRightLeg].begin(), regions[kRightLeg].end());
+  REQUIRE(regions[kLeftArm].size() > 500);
+  REQUIRE(regions[kLeftLeg].size() > 500);
+  for (const Eigen::VectorXf& betas : test_betas()) {
+    const mc::Points v = shape(m, betas);
+    INFO("betas " << betas.transpose());
+    const double h = mc::stature(v);
+    CHECK(h >= 1.45);
+    CHECK(h <= 2.05);
+    CHECK(mc::inverted_triangles(mean, v, faces) == 0);
+    CHECK(mc::intersecting_pairs(v, faces, regions[kLeftArm], torso_and_legs) == 0);
+    CHECK(mc::intersecting_pairs(v, faces, regions[kRightArm], torso_and_legs) == 0);
+    CHECK(mc::intersecting_pairs(v, faces, regions[kLeftLeg], regions[kRightLeg]) == 0);
+    CHECK(mc::signed_volume(v, faces) > 0.02);
+  }
+}
+
+#ifdef SG_HAVE_BODY_LIBRARY
+TEST_CASE("the committed asset loads through body::load_model like an SMPL file", "[model]") {
+  const GeneratedModel& m = generated();
+  const body::Model model = body::load_model(SG_DEFAULT_MODEL_ASSET, 0);
+  REQUIRE(model.vertex_count() == m.v_template.rows());
+  REQUIRE(model.component_count() == m.shapedirs.cols());
+  REQUIRE(model.joint_count() == 24);
+  CHECK(model.parents[0] == -1);
+  CHECK(model.parents[23] == 21);
+  CHECK(model.faces.rows() == m.faces.rows());
+  Eigen::VectorXf betas = Eigen::VectorXf::Zero(10);
+  betas << 1.5f, -2.0f, 0.5f, 3.0f, -1.0f, 0.0f, 2.0f, -3.0f, 1.0f, -0.5f;
+  const body::BodyMesh mesh = body::evaluate(model, betas);
+  const mc::Points ours = shape(m, betas);
+  double err = 0;
+  for (std::size_t v = 0; v < ours.size(); ++v)
+    err = std::max(err, (mesh.vertices.row(v).cast<double>().transpose() - ours[v]).norm());
+  CHECK(err < 1e-5);
+}
+#endif

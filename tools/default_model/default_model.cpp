@@ -1,0 +1,143 @@
+#include "default_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "implicit_mesher.hpp"
+#include "mannequin_shape.hpp"
+#include "npz_writer.hpp"
+#include "pca.hpp"
+#include "population.hpp"
+#include "rig.hpp"
+
+namespace default_model {
+
+GeneratedModel generate_default_model(const GeneratorOptions& options) {
+  const Mannequin mannequin;
+  TriMesh mesh = marching_tetrahedra([&](const Vec3& p) { return mannequin.field(p); },
+                                     mannequin.bounds(), options.grid_spacing, options.threads);
+  keep_largest_component(mesh);
+  RemeshOptions remesh_options;
+  remesh_options.target_edge = [&](const Vec3& p) { return mannequin.target_edge(p); };
+  remesh_options.project = [&](const Vec3& p) { return mannequin.project(p); };
+  remesh(mesh, remesh_options);
+  if (signed_volume(mesh) < 0)
+    for (auto& f : mesh.faces) std::swap(f[1], f[2]);
+
+  const Skeleton& skeleton = mannequin.skeleton();
+  const int V = static_cast<int>(mesh.vertices.size());
+  // Rig weights (4 influences, for glTF) and broader weights for the shape deformation.
+  const Eigen::MatrixXd rig_weights = skin_weights(mesh.vertices, skeleton, 0.22, 4);
+  const Eigen::MatrixXd deform_weights = skin_weights(mesh.vertices, skeleton, 0.45, 0);
+
+  const DeformationModel deformation(mesh.vertices, skeleton, deform_weights);
+  const std::vector<Anthropometry> people = sample_population(options.population, options.seed);
+  Eigen::MatrixXd theta(options.population, deformation.parameter_count());
+  for (int i = 0; i < options.population; ++i)
+    theta.row(i) = deformation.parameters(people[i]).transpose();
+  const PcaResult pca = factored_pca(theta, deformation.basis(), options.components);
+  const int K = static_cast<int>(pca.variances.size());
+
+  GeneratedModel out;
+  out.v_template.resize(V, 3);
+  for (int v = 0; v < V; ++v)
+    for (int a = 0; a < 3; ++a) out.v_template(v, a) = static_cast<float>(pca.mean[3 * v + a]);
+  Eigen::VectorXd centroid = Eigen::VectorXd::Zero(3 * V);
+  {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v = 0; v < V; ++v) c += pca.mean.segment<3>(3 * v);
+    c /= V;
+    for (int v = 0; v < V; ++v) centroid.segment<3>(3 * v) = pca.mean.segment<3>(3 * v) - c;
+  }
+  out.shapedirs.resize(3 * V, K);
+  out.variance_share.resize(K);
+  for (int k = 0; k < K; ++k) {
+    Eigen::VectorXd dir = pca.directions.col(k);
+    // Sign convention: +beta makes the body larger (direction along the body's own extent).
+    if (dir.dot(centroid) < 0) dir = -dir;
+    out.shapedirs.col(k) = (std::sqrt(pca.variances[k]) * dir).cast<float>();
+    out.variance_share[k] = static_cast<float>(pca.variances[k] / pca.total_variance);
+  }
+  out.faces.resize(static_cast<Eigen::Index>(mesh.faces.size()), 3);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int a = 0; a < 3; ++a) out.faces(f, a) = static_cast<std::uint32_t>(mesh.faces[f][a]);
+  const Eigen::MatrixXd regressor = joint_regressor(mesh.vertices, skeleton);
+  out.j_regressor = regressor.cast<float>();
+  out.weights = rig_weights.cast<float>();
+  out.joints = (out.j_regressor * out.v_template);
+  for (int j = 0; j < kJointCount; ++j) {
+    Vec3 fit = Vec3::Zero();
+    for (int v = 0; v < V; ++v) fit += regressor(j, v) * mesh.vertices[v];
+    out.joint_fit_error = std::max(out.joint_fit_error, (fit - skeleton.joints[j]).norm());
+  }
+  {
+    // Statures of the population from the y rows of the highest and lowest template vertices.
+    std::vector<int> top, bottom;
+    for (int v = 0; v < V; ++v) {
+      if (mesh.vertices[v].y() > 1.55) top.push_back(v);
+      if (mesh.vertices[v].y() < 0.05) bottom.push_back(v);
+    }
+    auto rows = [&](const std::vector<int>& ids) {
+      Eigen::MatrixXd b(ids.size(), deformation.parameter_count());
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        b.row(i) = deformation.basis().row(3 * ids[i] + 1);
+      return Eigen::MatrixXd(b * theta.transpose());
+    };
+    const Eigen::MatrixXd yt = rows(top), yb = rows(bottom);
+    for (int i = 0; i < options.population; ++i)
+      out.population_statures.push_back(yt.col(i).maxCoeff() - yb.col(i).minCoeff());
+  }
+
+  // The .npz, in SMPL's layout.
+  std::vector<NpyArray> arrays;
+  {
+    std::vector<float> v(out.v_template.data(), out.v_template.data() + out.v_template.size());
+    arrays.push_back(make_array("v_template", "<f4", {std::size_t(V), 3}, v));
+  }
+  {
+    std::vector<std::uint32_t> f(out.faces.data(), out.faces.data() + out.faces.size());
+    arrays.push_back(make_array("f", "<u4", {mesh.faces.size(), 3}, f));
+  }
+  {
+    // (V, 3, K) in C order: element [v][a][k] = shapedirs(3v + a, k).
+    std::vector<float> s(static_cast<std::size_t>(3) * V * K);
+    for (int r = 0; r < 3 * V; ++r)
+      for (int k = 0; k < K; ++k) s[static_cast<std::size_t>(r) * K + k] = out.shapedirs(r, k);
+    arrays.push_back(make_array("shapedirs", "<f4", {std::size_t(V), 3, std::size_t(K)}, s));
+  }
+  {
+    std::vector<float> r(static_cast<std::size_t>(kJointCount) * V);
+    for (int j = 0; j < kJointCount; ++j)
+      for (int v = 0; v < V; ++v) r[static_cast<std::size_t>(j) * V + v] = out.j_regressor(j, v);
+    arrays.push_back(
+        make_array("J_regressor", "<f4", {std::size_t(kJointCount), std::size_t(V)}, r));
+  }
+  {
+    std::vector<float> w(static_cast<std::size_t>(V) * kJointCount);
+    for (int v = 0; v < V; ++v)
+      for (int j = 0; j < kJointCount; ++j)
+        w[static_cast<std::size_t>(v) * kJointCount + j] = out.weights(v, j);
+    arrays.push_back(make_array("weights", "<f4", {std::size_t(V), std::size_t(kJointCount)}, w));
+  }
+  {
+    std::vector<std::uint32_t> k(2 * kJointCount);
+    for (int j = 0; j < kJointCount; ++j) {
+      const int p = joint_parents()[j];
+      k[j] = p < 0 ? 4294967295u : static_cast<std::uint32_t>(p);
+      k[kJointCount + j] = static_cast<std::uint32_t>(j);
+    }
+    arrays.push_back(make_array("kintree_table", "<u4", {2, std::size_t(kJointCount)}, k));
+  }
+  {
+    std::vector<float> j(out.joints.data(), out.joints.data() + out.joints.size());
+    arrays.push_back(make_array("J", "<f4", {std::size_t(kJointCount), 3}, j));
+  }
+  {
+    std::vector<float> s(out.variance_share.data(), out.variance_share.data() + K);
+    arrays.push_back(make_array("variance_share", "<f4", {std::size_t(K)}, s));
+  }
+  out.npz = npz_bytes(arrays);
+  return out;
+}
+
+}  // namespace default_model

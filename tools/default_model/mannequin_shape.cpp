@@ -1,0 +1,341 @@
+#include "mannequin_shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace default_model {
+
+const std::array<const char*, kJointCount>& joint_names() {
+  static const std::array<const char*, kJointCount> names = {
+      "pelvis",     "left_hip",    "right_hip",    "spine1",      "left_knee",     "right_knee",
+      "spine2",     "left_ankle",  "right_ankle",  "spine3",      "left_foot",     "right_foot",
+      "neck",       "left_collar", "right_collar", "head",        "left_shoulder", "right_shoulder",
+      "left_elbow", "right_elbow", "left_wrist",   "right_wrist", "left_hand",     "right_hand"};
+  return names;
+}
+
+const std::array<int, kJointCount>& joint_parents() {
+  static const std::array<int, kJointCount> parents = {
+      -1, 0, 0, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
+  return parents;
+}
+
+double smooth_min(double a, double b, double k) {
+  if (k <= 0) return std::min(a, b);
+  const double h = std::max(k - std::abs(a - b), 0.0) / k;
+  return std::min(a, b) - h * h * k * 0.25;
+}
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+void Capsule::finish() {
+  Vec3 d = b - a;
+  length = d.norm();
+  axis = length > 1e-12 ? Vec3(d / length) : Vec3(0, 1, 0);
+  u = u_hint - axis * axis.dot(u_hint);
+  u.normalize();
+  v = axis.cross(u);
+}
+
+// Distance estimate of an ellipsoid in the capsule's local frame (Inigo Quilez's bound
+// k0 (k0 - 1) / k1), with the along-axis coordinate measured beyond the clamped segment.
+double Capsule::distance(const Vec3& p) const {
+  const Vec3 d = p - a;
+  const double s = d.dot(axis);
+  const double t = length > 0 ? std::clamp(s / length, 0.0, 1.0) : 0.0;
+  const double ru = ru_a + (ru_b - ru_a) * t;
+  const double rv = rv_a + (rv_b - rv_a) * t;
+  const double beyond = s - t * length;
+  const double rc = beyond < 0 ? cap_a : cap_b;
+  const double qu = d.dot(u), qv = d.dot(v);
+  const Vec3 q(qu / ru, qv / rv, beyond / rc);
+  const Vec3 q2(qu / (ru * ru), qv / (rv * rv), beyond / (rc * rc));
+  const double k0 = q.norm();
+  const double k1 = q2.norm();
+  if (k1 < 1e-12) return -std::min({ru, rv, rc});
+  return k0 * (k0 - 1.0) / k1;
+}
+
+namespace {
+
+Capsule capsule(const Vec3& a, const Vec3& b, const Vec3& hint, double ru_a, double rv_a,
+                double ru_b, double rv_b, double cap_a, double cap_b) {
+  Capsule c{a, b, hint, ru_a, rv_a, ru_b, rv_b, cap_a, cap_b, {}, {}, {}, 0};
+  c.finish();
+  return c;
+}
+
+// An ellipsoid with semi-axes ra along `axis`, ru along `hint` (orthogonalised), rv along the
+// third direction.
+Capsule ellipsoid(const Vec3& centre, const Vec3& axis, const Vec3& hint, double ra, double ru,
+                  double rv) {
+  Capsule c{centre, centre + 1e-9 * axis.normalized(), hint, ru, rv, ru, rv, ra, ra, {}, {}, {}, 0};
+  c.finish();
+  return c;
+}
+
+Vec3 mirror(const Vec3& p) {
+  return Vec3(-p.x(), p.y(), p.z());
+}
+
+}  // namespace
+
+Mannequin::Mannequin() {
+  auto& J = skeleton_.joints;
+  // Rest joints of the left side; the right side mirrors them.
+  J[kPelvis] = Vec3(0, 0.925, -0.005);
+  J[kSpine1] = Vec3(0, 1.03, -0.015);
+  J[kSpine2] = Vec3(0, 1.15, -0.015);
+  J[kSpine3] = Vec3(0, 1.27, -0.02);
+  J[kNeck] = Vec3(0, 1.45, -0.025);
+  J[kHead] = Vec3(0, 1.54, 0.0);
+  J[kLeftHip] = Vec3(0.085, 0.865, 0.0);
+  J[kLeftKnee] = Vec3(0.102, 0.48, 0.01);
+  J[kLeftAnkle] = Vec3(0.118, 0.075, -0.02);
+  J[kLeftFoot] = Vec3(0.128, 0.02, 0.10);
+  J[kLeftCollar] = Vec3(0.045, 1.385, -0.02);
+  J[kLeftShoulder] = Vec3(0.175, 1.385, -0.03);
+  // A-pose: the arms hang 44 degrees from the vertical, palms facing the thighs.
+  const double arm_angle = 44.0 * M_PI / 180.0;
+  const Vec3 d_upper(std::sin(arm_angle), -std::cos(arm_angle), 0.0);
+  const Vec3 d_fore = Vec3(std::sin(arm_angle), -std::cos(arm_angle), 0.08).normalized();
+  J[kLeftElbow] = J[kLeftShoulder] + 0.27 * d_upper;
+  J[kLeftWrist] = J[kLeftElbow] + 0.245 * d_fore;
+  J[kLeftHand] = J[kLeftWrist] + 0.085 * d_fore;
+  for (int j : {kLeftHip, kLeftKnee, kLeftAnkle, kLeftFoot, kLeftCollar, kLeftShoulder, kLeftElbow,
+                kLeftWrist, kLeftHand}) {
+    J[j + 1] = mirror(J[j]);
+  }
+
+  // Bones: the segment each joint drives.
+  auto& bs = skeleton_.bone_start;
+  auto& be = skeleton_.bone_end;
+  auto& br = skeleton_.bone_radius;
+  for (int j = 0; j < kJointCount; ++j) bs[j] = J[j];
+  bs[kPelvis] = Vec3(0, 0.80, -0.01);
+  be[kPelvis] = J[kSpine1];
+  br[kPelvis] = 0.15;
+  be[kSpine1] = J[kSpine2];
+  br[kSpine1] = 0.13;
+  be[kSpine2] = J[kSpine3];
+  br[kSpine2] = 0.14;
+  be[kSpine3] = Vec3(0, 1.40, -0.025);
+  br[kSpine3] = 0.15;
+  be[kNeck] = J[kHead];
+  br[kNeck] = 0.055;
+  be[kHead] = Vec3(0, 1.66, 0.01);
+  br[kHead] = 0.09;
+  const Vec3 n_arm(std::cos(arm_angle), std::sin(arm_angle), 0.0);  // lateral-up normal
+  for (int s = 0; s < 2; ++s) {
+    const int o = s;  // left joints are odd-even pairs: left = base, right = base + 1
+    auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
+    be[kLeftHip + o] = J[kLeftKnee + o];
+    br[kLeftHip + o] = 0.075;
+    be[kLeftKnee + o] = J[kLeftAnkle + o];
+    br[kLeftKnee + o] = 0.045;
+    be[kLeftAnkle + o] = J[kLeftFoot + o];
+    br[kLeftAnkle + o] = 0.035;
+    be[kLeftFoot + o] = M(Vec3(0.135, 0.02, 0.17));
+    br[kLeftFoot + o] = 0.025;
+    be[kLeftCollar + o] = J[kLeftShoulder + o];
+    br[kLeftCollar + o] = 0.05;
+    be[kLeftShoulder + o] = J[kLeftElbow + o];
+    br[kLeftShoulder + o] = 0.045;
+    be[kLeftElbow + o] = J[kLeftWrist + o];
+    br[kLeftElbow + o] = 0.035;
+    be[kLeftWrist + o] = J[kLeftHand + o];
+    br[kLeftWrist + o] = 0.03;
+    be[kLeftHand + o] = J[kLeftWrist + o] + M(0.18 * d_fore);
+    br[kLeftHand + o] = 0.02;
+  }
+  // Fix the mirrored directions of the right side's hand bone end (computed with M above).
+  be[kRightHand] = mirror(be[kLeftHand]);
+
+  // Torso: superelliptic cross sections (half width in x, half depth in z, centre z).
+  levels_ = {{0.820, 0.120, 0.085, -0.005}, {0.880, 0.152, 0.102, -0.010},
+             {0.940, 0.154, 0.104, -0.002}, {1.010, 0.142, 0.099, 0.008},
+             {1.070, 0.134, 0.097, 0.010},  {1.140, 0.141, 0.103, 0.006},
+             {1.230, 0.156, 0.113, 0.002},  {1.320, 0.160, 0.108, -0.012},
+             {1.400, 0.138, 0.086, -0.028}, {1.450, 0.080, 0.060, -0.028}};
+
+  const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+  for (int s = 0; s < 2; ++s) {
+    auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
+    const double sx = s == 0 ? 1.0 : -1.0;
+    // Buttocks, pectorals, trapezius.
+    torso_parts_.push_back(
+        {ellipsoid(Vec3(sx * 0.072, 0.865, -0.05), Y, X, 0.095, 0.085, 0.075), 0.04});
+    torso_parts_.push_back(
+        {ellipsoid(Vec3(sx * 0.074, 1.265, 0.042), Y, X, 0.06, 0.078, 0.06), 0.04});
+    torso_parts_.push_back({capsule(Vec3(0, 1.45, -0.04), M(Vec3(0.16, 1.40, -0.035)), Y, 0.035,
+                                    0.05, 0.03, 0.045, 0.03, 0.03),
+                            0.04});
+  }
+  // Neck.
+  torso_parts_.push_back({capsule(Vec3(0, 1.40, -0.025), Vec3(0, 1.54, -0.005), X, 0.055, 0.058,
+                                  0.052, 0.055, 0.03, 0.03),
+                          0.035});
+  // Head: cranium, jaw, nose, ears.
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.595, 0.005), Y, X, 0.105, 0.077, 0.097), 0.0});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.535, 0.035), Y, X, 0.045, 0.056, 0.06), 0.03});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.575, 0.096), Y, X, 0.022, 0.012, 0.018), 0.015});
+  for (double sx : {1.0, -1.0}) {
+    head_parts_.push_back(
+        {ellipsoid(Vec3(sx * 0.076, 1.588, -0.005), Y, X, 0.03, 0.012, 0.02), 0.012});
+  }
+
+  for (int s = 0; s < 2; ++s) {
+    auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
+    const int o = s;
+    Side& side = sides_[s];
+    const Vec3 du = s == 0 ? d_upper : mirror(d_upper);
+    const Vec3 df = s == 0 ? d_fore : mirror(d_fore);
+    const Vec3 n = s == 0 ? n_arm : mirror(n_arm);
+    const Vec3 sh = J[kLeftShoulder + o], el = J[kLeftElbow + o], wr = J[kLeftWrist + o];
+    side.shoulder = sh;
+    // Arm: upper arm, deltoid, forearm with its muscle belly, palm, fingers, thumb.
+    side.arm.push_back(
+        {capsule(sh + 0.01 * du, el, n, 0.050, 0.054, 0.037, 0.041, 0.04, 0.03), 0.0});
+    side.arm.push_back({ellipsoid(sh + 0.035 * du + 0.012 * n, du, n, 0.075, 0.05, 0.056), 0.03});
+    side.arm.push_back({capsule(el, wr, n, 0.037, 0.041, 0.019, 0.028, 0.03, 0.02), 0.025});
+    side.arm.push_back({ellipsoid(el + 0.08 * df + 0.004 * n, df, n, 0.09, 0.035, 0.042), 0.03});
+    side.arm.push_back(
+        {capsule(wr + 0.012 * df, wr + 0.085 * df, n, 0.0165, 0.038, 0.0145, 0.042, 0.015, 0.012),
+         0.03});
+    side.arm.push_back(
+        {capsule(wr + 0.095 * df, wr + 0.168 * df, n, 0.0115, 0.037, 0.0085, 0.028, 0.012, 0.014),
+         0.012});
+    const Vec3 zf = M(Vec3(0, 0, 1));
+    side.arm.push_back(
+        {capsule(wr + 0.03 * df + 0.028 * zf - 0.004 * n, wr + 0.09 * df + 0.055 * zf - 0.01 * n, n,
+                 0.012, 0.012, 0.009, 0.009, 0.01, 0.009),
+         0.012});
+    (void)M;
+    // Leg: thigh, calf with muscle, ankle, foot.
+    const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
+    side.leg.push_back(
+        {capsule(hp + Vec3(0, 0.03, 0), kn, X, 0.084, 0.090, 0.047, 0.052, 0.05, 0.04), 0.0});
+    side.leg.push_back({capsule(kn, an, X, 0.046, 0.050, 0.029, 0.033, 0.03, 0.03), 0.05});
+    side.leg.push_back(
+        {ellipsoid(kn + 0.28 * (an - kn) + Vec3(0, 0, -0.018), Y, X, 0.10, 0.044, 0.047), 0.03});
+    const Vec3 heel = Vec3(an.x(), 0.036, an.z() - 0.035);
+    const Vec3 toe = Vec3(an.x() + (s == 0 ? 1.0 : -1.0) * 0.012, 0.025, 0.165);
+    side.leg.push_back(
+        {capsule(an, Vec3(an.x(), 0.035, 0.05), X, 0.031, 0.033, 0.034, 0.03, 0.03, 0.03), 0.03});
+    side.leg.push_back({capsule(heel, toe, X, 0.031, 0.036, 0.041, 0.022, 0.03, 0.02), 0.025});
+  }
+}
+
+double Mannequin::torso_loft(const Vec3& p) const {
+  const auto& L = levels_;
+  const double y0 = L.front().y, y1 = L.back().y;
+  const double yc = std::clamp(p.y(), y0, y1);
+  // Find the interval and interpolate with Catmull-Rom (finite difference tangents).
+  std::size_t i = 0;
+  while (i + 2 < L.size() && L[i + 1].y < yc) ++i;
+  const double t = (yc - L[i].y) / (L[i + 1].y - L[i].y);
+  auto tangent = [&](std::size_t k, auto get) {
+    const std::size_t a = k == 0 ? 0 : k - 1;
+    const std::size_t b = std::min(k + 1, L.size() - 1);
+    return (get(L[b]) - get(L[a])) / (L[b].y - L[a].y);
+  };
+  auto interp = [&](auto get) {
+    const double h = L[i + 1].y - L[i].y;
+    const double p0 = get(L[i]), p1 = get(L[i + 1]);
+    const double m0 = tangent(i, get) * h, m1 = tangent(i + 1, get) * h;
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
+           (t3 - t2) * m1;
+  };
+  const double a = interp([](const TorsoLevel& l) { return l.half_width; });
+  const double b = interp([](const TorsoLevel& l) { return l.half_depth; });
+  const double c = interp([](const TorsoLevel& l) { return l.z_center; });
+  const double e = 2.4;
+  const double qx = std::abs(p.x()) / a, qz = std::abs(p.z() - c) / b;
+  const double n = std::pow(std::pow(qx, e) + std::pow(qz, e), 1.0 / e);
+  const double cap = p.y() < y0 ? 0.045 : 0.03;
+  const double qy = (p.y() - yc) / cap;
+  const double r = std::min(a, b);
+  return (std::sqrt(n * n + qy * qy) - 1.0) * r;
+}
+
+double Mannequin::arm_field(const Side& s, const Vec3& p) const {
+  double d = 1e9;
+  for (const auto& [c, k] : s.arm) d = smooth_min(d, c.distance(p), k);
+  return d;
+}
+
+double Mannequin::leg_field(const Side& s, const Vec3& p) const {
+  double d = 1e9;
+  for (const auto& [c, k] : s.leg) d = smooth_min(d, c.distance(p), k);
+  return d;
+}
+
+double Mannequin::field(const Vec3& p) const {
+  double d = torso_loft(p);
+  for (const auto& [c, k] : torso_parts_) d = smooth_min(d, c.distance(p), k);
+  double head = 1e9;
+  for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
+  d = smooth_min(d, head, 0.03);
+  for (const Side& s : sides_) {
+    const double k = 0.045 * (1.0 - smoothstep(0.10, 0.22, (p - s.shoulder).norm()));
+    d = smooth_min(d, arm_field(s, p), k);
+  }
+  for (const Side& s : sides_) {
+    const double k = 0.05 * smoothstep(0.74, 0.86, p.y());
+    d = smooth_min(d, leg_field(s, p), k);
+  }
+  return d;
+}
+
+Vec3 Mannequin::gradient(const Vec3& p) const {
+  const double e = 1e-5;
+  Vec3 g;
+  for (int i = 0; i < 3; ++i) {
+    Vec3 a = p, b = p;
+    a[i] += e;
+    b[i] -= e;
+    g[i] = (field(a) - field(b)) / (2 * e);
+  }
+  return g;
+}
+
+Vec3 Mannequin::project(const Vec3& p, int iterations) const {
+  Vec3 q = p;
+  for (int it = 0; it < iterations; ++it) {
+    const double f = field(q);
+    if (std::abs(f) < 1e-7) break;
+    const Vec3 g = gradient(q);
+    const double g2 = g.squaredNorm();
+    if (g2 < 1e-12) break;
+    Vec3 step = f * g / g2;
+    if (step.norm() > 0.01) step *= 0.01 / step.norm();
+    q -= step;
+  }
+  return q;
+}
+
+double Mannequin::target_edge(const Vec3& p) const {
+  double L = 0.0175;
+  // Hands: near the wrists and beyond.
+  for (int s = 0; s < 2; ++s) {
+    const Vec3& w = skeleton_.joints[kLeftWrist + s];
+    L = std::min(
+        L, 0.009 + 0.0085 * smoothstep(0.06, 0.16, (p - skeleton_.joints[kLeftHand + s]).norm()));
+    (void)w;
+  }
+  // Head and face.
+  L = std::min(L, 0.011 + 0.0065 * smoothstep(0.10, 0.16, (p - Vec3(0, 1.59, 0.02)).norm()));
+  // Feet.
+  if (p.y() < 0.12) L = std::min(L, 0.012 + 0.0055 * smoothstep(0.06, 0.12, p.y()));
+  return L;
+}
+
+Eigen::AlignedBox3d Mannequin::bounds() const {
+  return Eigen::AlignedBox3d(Vec3(-0.78, -0.04, -0.22), Vec3(0.78, 1.76, 0.26));
+}
+
+}  // namespace default_model

@@ -1,0 +1,114 @@
+// The template mannequin of the default body model as an implicit surface: a smooth union of
+// tapered elliptic capsules, ellipsoids and a lofted torso, laid out along SMPL's 24 joints in
+// an A-pose. Metres, y up, facing +z, the subject's left on +x, soles at y = 0, 1.70 m tall.
+// The field is a signed distance estimate: negative inside, positive outside.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace default_model {
+
+using Vec3 = Eigen::Vector3d;
+
+constexpr int kJointCount = 24;
+
+// SMPL's joint names and parents (root's parent -1), in SMPL's order.
+const std::array<const char*, kJointCount>& joint_names();
+const std::array<int, kJointCount>& joint_parents();
+
+enum Joint : int {
+  kPelvis = 0,
+  kLeftHip,
+  kRightHip,
+  kSpine1,
+  kLeftKnee,
+  kRightKnee,
+  kSpine2,
+  kLeftAnkle,
+  kRightAnkle,
+  kSpine3,
+  kLeftFoot,
+  kRightFoot,
+  kNeck,
+  kLeftCollar,
+  kRightCollar,
+  kHead,
+  kLeftShoulder,
+  kRightShoulder,
+  kLeftElbow,
+  kRightElbow,
+  kLeftWrist,
+  kRightWrist,
+  kLeftHand,
+  kRightHand
+};
+
+// The rest skeleton: each joint's position and the segment ("bone") that the joint drives,
+// from bone_start to bone_end (for most joints bone_start is the joint itself), with the
+// segment's typical radius (used to normalise distances when computing skin weights).
+struct Skeleton {
+  std::array<Vec3, kJointCount> joints;
+  std::array<Vec3, kJointCount> bone_start;
+  std::array<Vec3, kJointCount> bone_end;
+  std::array<double, kJointCount> bone_radius;
+};
+
+// Tapered capsule with elliptic cross sections; also an ellipsoid when a == b.
+struct Capsule {
+  Vec3 a, b;            // axis end points
+  Vec3 u_hint;          // direction of the first cross-section axis (made orthogonal)
+  double ru_a, rv_a;    // cross-section radii at a
+  double ru_b, rv_b;    // cross-section radii at b
+  double cap_a, cap_b;  // length of the rounded caps beyond a and b
+  // Derived frame.
+  Vec3 axis, u, v;
+  double length = 0;
+  void finish();
+  double distance(const Vec3& p) const;
+};
+
+// Torso cross sections: superellipses at key heights, interpolated smoothly in y.
+struct TorsoLevel {
+  double y, half_width, half_depth, z_center;
+};
+
+class Mannequin {
+ public:
+  Mannequin();
+
+  double field(const Vec3& p) const;
+  Vec3 gradient(const Vec3& p) const;
+  // Newton steps along the gradient onto the zero level set.
+  Vec3 project(const Vec3& p, int iterations = 5) const;
+  // Desired edge length of the output mesh near p (finer at hands, face and feet).
+  double target_edge(const Vec3& p) const;
+
+  const Skeleton& skeleton() const { return skeleton_; }
+  Eigen::AlignedBox3d bounds() const;
+
+ private:
+  struct Side {
+    std::vector<std::pair<Capsule, double>> arm;  // primitive, blend radius into the chain
+    std::vector<std::pair<Capsule, double>> leg;
+    Vec3 shoulder;
+  };
+  double torso_loft(const Vec3& p) const;
+  double arm_field(const Side& s, const Vec3& p) const;
+  double leg_field(const Side& s, const Vec3& p) const;
+
+  Skeleton skeleton_;
+  std::vector<TorsoLevel> levels_;
+  std::vector<std::pair<Capsule, double>> torso_parts_;  // blended into the loft
+  std::vector<std::pair<Capsule, double>> head_parts_;
+  std::array<Side, 2> sides_;  // 0 = left (+x), 1 = right
+};
+
+double smooth_min(double a, double b, double k);
+double smoothstep(double e0, double e1, double x);
+
+}  // namespace default_model

@@ -1,0 +1,38 @@
+// A minimal, byte-deterministic .npz writer: .npy v1.0 arrays in an uncompressed ("stored")
+// zip archive, as numpy.savez writes them, with fixed timestamps.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace default_model {
+
+struct NpyArray {
+  std::string name;   // without ".npy"
+  std::string descr;  // numpy dtype string, e.g. "<f4", "<u4", "<i8"
+  std::vector<std::size_t> shape;
+  std::vector<std::uint8_t> data;  // C order, little endian
+};
+
+std::vector<std::uint8_t> npy_bytes(const NpyArray& array);
+std::vector<std::uint8_t> npz_bytes(const std::vector<NpyArray>& arrays);
+
+template <typename T>
+NpyArray make_array(const std::string& name, const std::string& descr,
+                    std::vector<std::size_t> shape, const std::vector<T>& values) {
+  NpyArray a{name, descr, std::move(shape), {}};
+  a.data.resize(values.size() * sizeof(T));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    // Little-endian serialisation independent of the host.
+    std::uint64_t bits = 0;
+    static_assert(sizeof(T) <= 8, "scalar types only");
+    std::memcpy(&bits, &values[i], sizeof(T));
+    for (std::size_t b = 0; b < sizeof(T); ++b)
+      a.data[i * sizeof(T) + b] = static_cast<std::uint8_t>(bits >> (8 * b));
+  }
+  return a;
+}
+
+}  // namespace default_model

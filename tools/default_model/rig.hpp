@@ -1,0 +1,23 @@
+// Skinning weights and the joint regressor of the template mesh.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mannequin_shape.hpp"
+
+namespace default_model {
+
+// V x 24 weights from distances to the bones, normalised by each bone's radius:
+// w_j ~ exp(-((d_j - d_min) / softness)^2), at most `max_influences` non-zero per vertex
+// (0 = all), rows summing to 1.
+Eigen::MatrixXd skin_weights(const std::vector<Vec3>& vertices, const Skeleton& skeleton,
+                             double softness, int max_influences);
+
+// 24 x V regressor: each joint is a convex combination of the vertices around it (maximum
+// entropy weights tilted so the combination reproduces the joint exactly on the template).
+// Rows are non-negative and sum to 1.
+Eigen::MatrixXd joint_regressor(const std::vector<Vec3>& vertices, const Skeleton& skeleton);
+
+}  // namespace default_model
