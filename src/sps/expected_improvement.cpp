@@ -49,6 +49,39 @@ double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd&
   return diff * cdf + sigma * pdf;
 }
 
+Eigen::VectorXd expected_improvement_batch(const PreferenceModel& model, const Eigen::MatrixXd& xs,
+                                           double best_mean, Eigen::MatrixXd* gradient) {
+  Eigen::VectorXd mean;
+  Eigen::VectorXd variance;
+  Eigen::MatrixXd d_mean;
+  Eigen::MatrixXd d_variance;
+  model.predict_batch(xs, mean, variance, gradient != nullptr ? &d_mean : nullptr,
+                      gradient != nullptr ? &d_variance : nullptr);
+  const Eigen::Index m = xs.cols();
+  Eigen::VectorXd ei(m);
+  if (gradient != nullptr) gradient->resize(xs.rows(), m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double sigma = std::sqrt(variance(j));
+    const double diff = mean(j) - best_mean;
+    if (sigma < 1e-12) {
+      ei(j) = std::max(diff, 0.0);
+      if (gradient != nullptr) {
+        gradient->col(j) =
+            diff > 0.0 ? Eigen::VectorXd(d_mean.col(j)) : Eigen::VectorXd::Zero(xs.rows());
+      }
+      continue;
+    }
+    const double z = diff / sigma;
+    const double cdf = normal_cdf(z);
+    const double pdf = normal_pdf(z);
+    ei(j) = diff * cdf + sigma * pdf;
+    if (gradient != nullptr) {
+      gradient->col(j) = cdf * d_mean.col(j) + (pdf / (2.0 * sigma)) * d_variance.col(j);
+    }
+  }
+  return ei;
+}
+
 Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, double best_mean,
                                               const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
                                               const EiSearchSettings& settings) {
@@ -64,8 +97,19 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
   std::vector<Eigen::VectorXd> candidates;
   candidates.reserve(static_cast<std::size_t>(candidate_count + model.point_count() + 1));
   candidates.push_back(x_plus);
-  for (int i = 0; i < model.point_count(); ++i) {
-    Eigen::VectorXd x = model.points().col(i);
+  // Perturbations of the observed points with the largest posterior means.
+  Eigen::VectorXd observed_means;
+  Eigen::VectorXd observed_variances;
+  model.predict_batch(model.points(), observed_means, observed_variances, nullptr, nullptr);
+  std::vector<int> observed(static_cast<std::size_t>(model.point_count()));
+  std::iota(observed.begin(), observed.end(), 0);
+  const int seeds = std::min<int>(20, model.point_count());
+  std::partial_sort(observed.begin(), observed.begin() + seeds, observed.end(), [&](int a, int b) {
+    return observed_means(a) > observed_means(b) ||
+           (observed_means(a) == observed_means(b) && a < b);
+  });
+  for (int s = 0; s < seeds; ++s) {
+    Eigen::VectorXd x = model.points().col(observed[static_cast<std::size_t>(s)]);
     for (int k = 0; k < d; ++k) x(k) += 0.05 * normal(rng);
     candidates.push_back(x.cwiseMax(0.0).cwiseMin(1.0));
   }

@@ -15,6 +15,10 @@ namespace sps {
 double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd& x,
                             double best_mean, Eigen::VectorXd* gradient = nullptr);
 
+// EI at the columns of xs (d x m); gradients as columns of `gradient` if requested.
+Eigen::VectorXd expected_improvement_batch(const PreferenceModel& model, const Eigen::MatrixXd& xs,
+                                           double best_mean, Eigen::MatrixXd* gradient = nullptr);
+
 struct EiSearchSettings {
   int candidates = 0;  // random candidates scored before local search; 0 = automatic
   int starts = 0;      // local searches from the best candidates; 0 = automatic

@@ -93,6 +93,24 @@ void MaternKernel::cross_with_gradient(const Eigen::MatrixXd& points, const Eige
   }
 }
 
+void MaternKernel::cross_batch(const Eigen::MatrixXd& points, const Eigen::MatrixXd& xs,
+                               Eigen::MatrixXd& k, Eigen::MatrixXd& q) const {
+  const Eigen::Index n = points.cols();
+  const Eigen::Index m = xs.cols();
+  k.resize(n, m);
+  q.resize(n, m);
+  const double var = variance();
+  for (Eigen::Index j = 0; j < m; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double r =
+          std::sqrt(((xs.col(j) - points.col(i)).array().square() * inv_sq_lengths_.array()).sum());
+      const double e = std::exp(-kSqrt5 * r);
+      k(i, j) = var * (1.0 + kSqrt5 * r + (5.0 / 3.0) * r * r) * e;
+      q(i, j) = var * -(5.0 / 3.0) * (1.0 + kSqrt5 * r) * e;
+    }
+  }
+}
+
 Eigen::VectorXd MaternKernel::contract_log_gradients(const Eigen::MatrixXd& points,
                                                      const Eigen::MatrixXd& m) const {
   const Eigen::Index n = points.cols();

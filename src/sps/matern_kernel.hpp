@@ -36,6 +36,12 @@ class MaternKernel {
   void cross_with_gradient(const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
                            Eigen::VectorXd& k, Eigen::MatrixXd& dk_dx) const;
 
+  // For many query points at once (columns of `xs`): k(i, j) = k(points_i, xs_j) and the
+  // factor q(i, j) with d k(points_i, x) / dx at xs_j = q(i, j) * (xs_j - points_i) / l^2.
+  void cross_batch(const Eigen::MatrixXd& points, const Eigen::MatrixXd& xs, Eigen::MatrixXd& k,
+                   Eigen::MatrixXd& q) const;
+  const Eigen::VectorXd& inverse_squared_lengths() const { return inv_sq_lengths_; }
+
   // g_j = sum_il M_il * d Gram_il / d log(hyperparameter j) for a symmetric M, where j = 0 is
   // the amplitude and 1 + k the length scale k. Contracting on the fly avoids storing d + 1
   // N x N derivative matrices.

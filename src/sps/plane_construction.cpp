@@ -126,17 +126,19 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
 
   std::vector<MaximizeResult> results(static_cast<std::size_t>(restarts));
   parallel_for(restarts, settings.threads, [&](int r) {
+    Eigen::MatrixXd xs(d, static_cast<Eigen::Index>(lattice.size()));
+    Eigen::MatrixXd ei_grad;
     const Objective fn = [&](const Eigen::VectorXd& v, Eigen::VectorXd& grad) {
-      grad.setZero(d);
-      double value = 0.0;
-      Eigen::VectorXd ei_grad;
-      for (const LatticePoint& lp : lattice) {
-        const double a = lp.a >= 0.0 ? lp.a : lp.a * base.u_neg_scale;
-        const Eigen::VectorXd x = base.c + a * u + lp.b * v;
-        value += expected_improvement(model, x, best_mean, &ei_grad);
-        grad += lp.b * ei_grad;
+      for (std::size_t j = 0; j < lattice.size(); ++j) {
+        const double a = lattice[j].a >= 0.0 ? lattice[j].a : lattice[j].a * base.u_neg_scale;
+        xs.col(static_cast<Eigen::Index>(j)) = base.c + a * u + lattice[j].b * v;
       }
-      value *= inv_count;
+      const Eigen::VectorXd ei = expected_improvement_batch(model, xs, best_mean, &ei_grad);
+      grad.setZero(d);
+      for (std::size_t j = 0; j < lattice.size(); ++j) {
+        grad += lattice[j].b * ei_grad.col(static_cast<Eigen::Index>(j));
+      }
+      double value = ei.sum() * inv_count;
       grad *= inv_count;
       // Soft orthogonality: -(u.v)^2.
       const double uv = u.dot(v);
@@ -156,9 +158,16 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
   if (u.squaredNorm() > 0.0) v -= (v.dot(u) / u.squaredNorm()) * u;
   v = fit_symmetric(x_plus, v);
   if (v.norm() < 1e-6 && d > 1) {
-    // x+ sits in a corner of the box: no symmetric v fits. Use a small orthogonal direction;
-    // the grid clamps the points that leave the box.
-    v = 0.1 * random_orthogonal_direction(u, rng);
+    // The optimizer collapsed v (EI flat across the plane): take a random orthogonal
+    // direction among the coordinates that leave room on both sides of x+. In an exact
+    // corner of the box no such direction exists and the plane degenerates to a segment.
+    const Eigen::VectorXd free = (bound.array() > 1e-9).cast<double>().matrix();
+    const Eigen::VectorXd u_free = u.cwiseProduct(free);
+    for (int attempt = 0; attempt < 20 && v.norm() < 1e-6; ++attempt) {
+      Eigen::VectorXd dir = random_unit(d, rng).cwiseProduct(free);
+      if (u_free.squaredNorm() > 0.0) dir -= (dir.dot(u_free) / u_free.squaredNorm()) * u_free;
+      if (dir.norm() > 1e-9) v = fit_symmetric(x_plus, 10.0 * dir.normalized());
+    }
   }
   plane.v = v;
   return plane;
@@ -178,6 +187,7 @@ Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei) {
   p.c = x_plus;
   p.u = x_ei - x_plus;
   p.v = Eigen::VectorXd::Zero(x_plus.size());
+  p.u_neg_scale = 0.0;  // a segment from x+ to x_EI: nothing on the far side of x+
   return p;
 }
 

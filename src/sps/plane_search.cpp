@@ -153,7 +153,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice) {
   Eigen::VectorXd x_plus = last_choice;
   if (options_.current_best == CurrentBest::kPosteriorMean) {
     const int best = model_->best_observed_index();
-    if (best >= 0) x_plus = data_.points().col(best);
+    if (best >= 0) x_plus = model_->points().col(best);
   }
   if (options_.method == Method::kSpsRandom) {
     plane_ = random_plane(x_plus, rng_);
@@ -184,7 +184,7 @@ double PlaneSearch::posterior_variance(const Eigen::VectorXd& x) const {
 
 double PlaneSearch::expected_improvement(const Eigen::VectorXd& x) const {
   const int best = model_->best_observed_index();
-  const double best_mean = best >= 0 ? model_->mean(data_.points().col(best)) : 0.0;
+  const double best_mean = best >= 0 ? model_->mean(model_->points().col(best)) : 0.0;
   return sps::expected_improvement(*model_, x, best_mean);
 }
 

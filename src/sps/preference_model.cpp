@@ -1,7 +1,9 @@
 #include "sps/preference_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -43,6 +45,35 @@ Eigen::VectorXd ModelSettings::prior_log_mean(int dims) const {
   return mean;
 }
 
+PreferenceData model_window(const PreferenceData& data, const ModelSettings& settings) {
+  if (data.point_count() <= settings.max_points) return data;
+  std::set<int> used;
+  std::size_t first = data.preferences().size();
+  while (first > 0) {
+    const Preference& p = data.preferences()[first - 1];
+    std::set<int> with = used;
+    with.insert(p.chosen);
+    with.insert(p.others.begin(), p.others.end());
+    if (static_cast<int>(with.size()) > settings.max_points && !used.empty()) break;
+    used = std::move(with);
+    --first;
+  }
+  PreferenceData window(data.dims(), data.merge_distance());
+  std::vector<int> new_index(static_cast<std::size_t>(data.point_count()), -1);
+  for (int i : used) {
+    new_index[static_cast<std::size_t>(i)] = window.point_count();
+    window.add_point_exact(data.points().col(i));
+  }
+  for (std::size_t k = first; k < data.preferences().size(); ++k) {
+    const Preference& p = data.preferences()[k];
+    Preference q;
+    q.chosen = new_index[static_cast<std::size_t>(p.chosen)];
+    for (int o : p.others) q.others.push_back(new_index[static_cast<std::size_t>(o)]);
+    window.add_preference_indices(std::move(q));
+  }
+  return window;
+}
+
 MapObjective::MapObjective(const PreferenceData& data, const ModelSettings& settings)
     : data_(data), settings_(settings) {}
 
@@ -59,29 +90,40 @@ double MapObjective::joint(const Eigen::VectorXd& log_theta, const Eigen::Vector
                    nullptr);
 }
 
-Eigen::VectorXd MapObjective::optimal_latent(const Eigen::VectorXd& log_theta,
-                                             Eigen::VectorXd f) const {
-  const MaternKernel kernel(KernelParams::from_log(log_theta));
-  const Eigen::MatrixXd c = covariance(kernel, data_.points(), settings_.noise_variance);
-  const Eigen::LLT<Eigen::MatrixXd> llt(c);
-  const Eigen::Index n = c.rows();
-  const double s = settings_.btl_scale;
+namespace {
+
+// C = K + bI factorized once per hyperparameter value: the inverse serves the Newton steps,
+// the objective and its gradient alike.
+struct Factorized {
+  Eigen::MatrixXd c_inv;
+  double log_det = 0.0;
+};
+
+Factorized factorize(const MaternKernel& kernel, const Eigen::MatrixXd& points, double noise) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(covariance(kernel, points, noise));
+  const Eigen::Index n = points.cols();
+  Factorized out;
+  out.c_inv = llt.solve(Eigen::MatrixXd::Identity(n, n));
+  out.log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+  return out;
+}
+
+// Inner problem: argmax_f log p(D|f) - f'C^-1 f / 2. It is concave (BTL is log-concave, the
+// prior Gaussian), so Newton with step halving converges in a few steps from a warm start.
+Eigen::VectorXd newton_latent(const std::vector<Preference>& preferences, const Factorized& fac,
+                              double scale, Eigen::VectorXd f) {
+  const Eigen::Index n = fac.c_inv.rows();
   const auto psi = [&](const Eigen::VectorXd& latent) {
-    return btl_log_likelihood(data_.preferences(), latent, s) - 0.5 * latent.dot(llt.solve(latent));
+    return btl_log_likelihood(preferences, latent, scale) - 0.5 * latent.dot(fac.c_inv * latent);
   };
   if (f.size() != n) f = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd grad;
   Eigen::MatrixXd w;
   double current = psi(f);
-  // The inner problem is concave (BTL is log-concave, the prior Gaussian): Newton with step
-  // halving converges in a handful of steps from a warm start.
   for (int iteration = 0; iteration < 50; ++iteration) {
-    btl_log_likelihood(data_.preferences(), f, s, &grad, &w);
-    // Newton step: (C^-1 + W) f_new = W f + grad  <=>  f_new = C (I + W C)^-1 (W f + grad).
-    const Eigen::VectorXd rhs = w * f + grad;
-    Eigen::MatrixXd a = w * c;
-    a.diagonal().array() += 1.0;
-    const Eigen::VectorXd target = c * a.partialPivLu().solve(rhs);
+    btl_log_likelihood(preferences, f, scale, &grad, &w);
+    // Newton step: (C^-1 + W) f_new = W f + grad, with C^-1 + W symmetric positive definite.
+    const Eigen::VectorXd target = (fac.c_inv + w).llt().solve(w * f + grad);
     const Eigen::VectorXd step = target - f;
     if (!step.allFinite()) break;
     double t = 1.0;
@@ -101,26 +143,32 @@ Eigen::VectorXd MapObjective::optimal_latent(const Eigen::VectorXd& log_theta,
   return f;
 }
 
+}  // namespace
+
+Eigen::VectorXd MapObjective::optimal_latent(const Eigen::VectorXd& log_theta,
+                                             Eigen::VectorXd f) const {
+  const MaternKernel kernel(KernelParams::from_log(log_theta));
+  return newton_latent(data_.preferences(),
+                       factorize(kernel, data_.points(), settings_.noise_variance),
+                       settings_.btl_scale, std::move(f));
+}
+
 double MapObjective::evaluate(const Eigen::VectorXd& log_theta, Eigen::VectorXd& f,
                               Eigen::VectorXd& gradient) const {
-  f = optimal_latent(log_theta, f);
   const MaternKernel kernel(KernelParams::from_log(log_theta));
-  const Eigen::MatrixXd c = covariance(kernel, data_.points(), settings_.noise_variance);
-  const Eigen::LLT<Eigen::MatrixXd> llt(c);
-  const Eigen::Index n = c.rows();
-  const Eigen::MatrixXd c_inv = llt.solve(Eigen::MatrixXd::Identity(n, n));
-  const Eigen::VectorXd alpha = c_inv * f;
-  const Eigen::MatrixXd l = llt.matrixL();
-  const double log_det = 2.0 * l.diagonal().array().log().sum();
+  const Factorized fac = factorize(kernel, data_.points(), settings_.noise_variance);
+  f = newton_latent(data_.preferences(), fac, settings_.btl_scale, std::move(f));
+  const Eigen::Index n = fac.c_inv.rows();
+  const Eigen::VectorXd alpha = fac.c_inv * f;
 
   Eigen::VectorXd prior_gradient;
   const double value = btl_log_likelihood(data_.preferences(), f, settings_.btl_scale) -
-                       0.5 * f.dot(alpha) - 0.5 * log_det -
+                       0.5 * f.dot(alpha) - 0.5 * fac.log_det -
                        0.5 * static_cast<double>(n) * std::log(2.0 * kPi) +
                        log_prior(log_theta, settings_.prior_log_mean(data_.dims()),
                                  settings_.prior_log_variance, &prior_gradient);
   // d/dtheta_j [-1/2 f'C^-1 f - 1/2 log|C|] = 1/2 tr((alpha alpha' - C^-1) dC/dtheta_j).
-  const Eigen::MatrixXd m = alpha * alpha.transpose() - c_inv;
+  const Eigen::MatrixXd m = alpha * alpha.transpose() - fac.c_inv;
   gradient = 0.5 * kernel.contract_log_gradients(data_.points(), m) + prior_gradient;
   return value;
 }
@@ -134,7 +182,7 @@ PreferenceModel::PreferenceModel(const PreferenceData& data, const ModelSettings
                                  KernelParams params, Eigen::VectorXd latent)
     : dims_(data.dims()),
       kernel_(std::move(params)),
-      points_(data.points()),
+      points_(model_window(data, settings).points()),
       latent_(std::move(latent)) {
   if (latent_.size() != points_.cols()) {
     throw std::invalid_argument("latent values do not match the number of points");
@@ -147,14 +195,20 @@ PreferenceModel::PreferenceModel(const PreferenceData& data, const ModelSettings
   }
 }
 
-PreferenceModel PreferenceModel::fit(const PreferenceData& data, const ModelSettings& settings,
+PreferenceModel PreferenceModel::fit(const PreferenceData& all_data, const ModelSettings& settings,
                                      const PreferenceModel& previous) {
+  const PreferenceData data = model_window(all_data, settings);
   const int n = data.point_count();
   if (n == 0) return PreferenceModel(data.dims(), settings);
-  // Warm start: previous MAP values where we have them, the previous posterior mean elsewhere.
+  // Warm start: previous MAP values where the points are the same (the data is append-only
+  // until the window starts to slide), the previous posterior mean elsewhere.
+  const bool same_prefix = previous.points_.cols() <= n &&
+                           (previous.points_.cols() == 0 ||
+                            data.points().leftCols(previous.points_.cols()) == previous.points_);
   Eigen::VectorXd f(n);
   for (int i = 0; i < n; ++i) {
-    f(i) = i < previous.latent_.size() ? previous.latent_(i) : previous.mean(data.points().col(i));
+    f(i) = same_prefix && i < previous.latent_.size() ? previous.latent_(i)
+                                                      : previous.mean(data.points().col(i));
   }
   const MapObjective objective(data, settings);
   const Eigen::VectorXd prior_mean = settings.prior_log_mean(data.dims());
@@ -164,6 +218,13 @@ PreferenceModel PreferenceModel::fit(const PreferenceData& data, const ModelSett
   const Eigen::VectorXd upper = prior_mean.array() + radius;
   Eigen::VectorXd start = previous.params().to_log();
   if (start.size() != prior_mean.size()) start = prior_mean;
+  start = start.cwiseMax(lower).cwiseMin(upper);
+
+  // Each evaluation costs a few N^3 operations: cap the iterations so a large data set still
+  // answers in well under a second (the warm start is close to the optimum anyway).
+  const double cube = static_cast<double>(n) * n * n;
+  const int iterations = std::max(
+      2, std::min(settings.max_hyper_iterations, static_cast<int>(2.5e8 / std::max(cube, 1.0))));
 
   Eigen::VectorXd best_f = f;
   double best_value = -std::numeric_limits<double>::infinity();
@@ -177,12 +238,9 @@ PreferenceModel PreferenceModel::fit(const PreferenceData& data, const ModelSett
     f = latent;  // warm start the next inner solve
     return value;
   };
-  const MaximizeResult result =
-      maximize_bounded(fn, start, lower, upper, settings.max_hyper_iterations, 1e-4);
-  // Recompute the latent values at the returned theta exactly (the tracked best is the same
-  // point; this keeps the fit a pure function of its inputs).
-  Eigen::VectorXd latent = objective.optimal_latent(result.x, best_f);
-  return PreferenceModel(data, settings, KernelParams::from_log(result.x), std::move(latent));
+  const MaximizeResult result = maximize_bounded(fn, start, lower, upper, iterations, 1e-3);
+  // The latent values at the returned theta (the tracked best belongs to the same point).
+  return PreferenceModel(all_data, settings, KernelParams::from_log(result.x), std::move(best_f));
 }
 
 double PreferenceModel::mean(const Eigen::VectorXd& x) const {
@@ -218,6 +276,43 @@ void PreferenceModel::predict(const Eigen::VectorXd& x, double& mean, double& va
       *d_variance = -2.0 * dk * c_inv_k;
     } else {
       d_variance->setZero(x.size());
+    }
+  }
+}
+
+void PreferenceModel::predict_batch(const Eigen::MatrixXd& xs, Eigen::VectorXd& mean,
+                                    Eigen::VectorXd& variance, Eigen::MatrixXd* d_mean,
+                                    Eigen::MatrixXd* d_variance) const {
+  const Eigen::Index m = xs.cols();
+  if (points_.cols() == 0) {
+    mean.setZero(m);
+    variance.setConstant(m, kernel_.variance());
+    if (d_mean != nullptr) d_mean->setZero(xs.rows(), m);
+    if (d_variance != nullptr) d_variance->setZero(xs.rows(), m);
+    return;
+  }
+  Eigen::MatrixXd k;
+  Eigen::MatrixXd q;
+  kernel_.cross_batch(points_, xs, k, q);
+  const Eigen::MatrixXd c_inv_k = c_inv_ * k;
+  mean = k.transpose() * alpha_;
+  const Eigen::VectorXd raw =
+      kernel_.variance() - (k.array() * c_inv_k.array()).colwise().sum().transpose();
+  variance = raw.cwiseMax(0.0);
+  const Eigen::VectorXd& inv_l2 = kernel_.inverse_squared_lengths();
+  // d k(p_i, x_j)/dx_j = q_ij (x_j - p_i) / l^2, so sum_i w_ij dk_ij / dx_j
+  //   = (x_j * sum_i q_ij w_ij - P (q_.j .* w_.j)) / l^2.
+  const auto contract = [&](const Eigen::MatrixXd& w) {
+    const Eigen::MatrixXd qw = q.array() * w.array();
+    Eigen::MatrixXd out = xs * qw.colwise().sum().asDiagonal();
+    out.noalias() -= points_ * qw;
+    return Eigen::MatrixXd(inv_l2.asDiagonal() * out);
+  };
+  if (d_mean != nullptr) *d_mean = contract(alpha_.replicate(1, m));
+  if (d_variance != nullptr) {
+    *d_variance = -2.0 * contract(c_inv_k);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (raw(j) <= 0.0) d_variance->col(j).setZero();
     }
   }
 }

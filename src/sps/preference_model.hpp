@@ -19,6 +19,9 @@ struct ModelSettings {
   double btl_scale = 0.01;           // temperature s of the BTL likelihood
   double noise_variance = 1e-4;      // b: white noise on the latent values
   int max_hyper_iterations = 40;     // L-BFGS-B iterations for the hyperparameters
+  // The model uses the newest preferences whose points number at most this many, so that a
+  // long session stays responsive (the cost grows with the cube of the point count).
+  int max_points = 300;
 
   // Log-space prior mean of each hyperparameter [log a, log l_1..l_d].
   Eigen::VectorXd prior_log_mean(int dims) const;
@@ -27,6 +30,10 @@ struct ModelSettings {
 // The MAP objective as a function of the log hyperparameters, with f maximized out
 // (the profile). By the envelope theorem its gradient equals the partial gradient of the
 // joint objective at the inner optimum, which is what makes this cheap.
+// The part of the data the model is fitted to: everything, or the newest preferences that fit
+// within settings.max_points points (re-indexed, original order kept).
+PreferenceData model_window(const PreferenceData& data, const ModelSettings& settings);
+
 class MapObjective {
  public:
   MapObjective(const PreferenceData& data, const ModelSettings& settings);
@@ -49,7 +56,8 @@ class PreferenceModel {
  public:
   // An empty model (no data): prior mean 0, prior variance.
   PreferenceModel(int dims, const ModelSettings& settings);
-  // A model at given hyperparameters and latent values (no optimization).
+  // A model at given hyperparameters and latent values (no optimization); `latent` belongs to
+  // the points of model_window(data, settings).
   PreferenceModel(const PreferenceData& data, const ModelSettings& settings, KernelParams params,
                   Eigen::VectorXd latent);
 
@@ -70,7 +78,11 @@ class PreferenceModel {
   void predict(const Eigen::VectorXd& x, double& mean, double& variance, Eigen::VectorXd* d_mean,
                Eigen::VectorXd* d_variance) const;
 
-  // Index of the observed point with the largest posterior mean (-1 without data).
+  // The same for the columns of xs (d x m), using matrix-matrix products.
+  void predict_batch(const Eigen::MatrixXd& xs, Eigen::VectorXd& mean, Eigen::VectorXd& variance,
+                     Eigen::MatrixXd* d_mean, Eigen::MatrixXd* d_variance) const;
+
+  // Index (into points()) of the observed point with the largest posterior mean (-1 without data).
   int best_observed_index() const;
 
  private:
