@@ -167,7 +167,7 @@ Mannequin::Mannequin() {
     const double sx = s == 0 ? 1.0 : -1.0;
     // Buttocks, pectorals, trapezius.
     torso_parts_.push_back(
-        {ellipsoid(Vec3(sx * 0.072, 0.865, -0.05), Y, X, 0.095, 0.085, 0.075), 0.04});
+        {ellipsoid(Vec3(sx * 0.072, 0.865, -0.042), Y, X, 0.095, 0.085, 0.068), 0.04});
     torso_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.074, 1.265, 0.042), Y, X, 0.06, 0.078, 0.06), 0.04});
     torso_parts_.push_back({capsule(Vec3(0, 1.45, -0.04), M(Vec3(0.16, 1.40, -0.035)), Y, 0.035,
@@ -218,9 +218,10 @@ Mannequin::Mannequin() {
     const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
     side.leg.push_back(
         {capsule(hp + Vec3(0, 0.03, 0), kn, X, 0.084, 0.090, 0.047, 0.052, 0.05, 0.04), 0.0});
-    side.leg.push_back({capsule(kn, an, X, 0.046, 0.050, 0.029, 0.033, 0.03, 0.03), 0.05});
     side.leg.push_back(
-        {ellipsoid(kn + 0.28 * (an - kn) + Vec3(0, 0, -0.018), Y, X, 0.10, 0.044, 0.047), 0.03});
+        {capsule(kn + Vec3(0, 0.03, 0), an, X, 0.047, 0.051, 0.029, 0.033, 0.04, 0.03), 0.06});
+    side.leg.push_back(
+        {ellipsoid(kn + 0.28 * (an - kn) + Vec3(0, 0, -0.018), Y, X, 0.11, 0.046, 0.049), 0.04});
     const Vec3 heel = Vec3(an.x(), 0.036, an.z() - 0.035);
     const Vec3 toe = Vec3(an.x() + (s == 0 ? 1.0 : -1.0) * 0.012, 0.025, 0.165);
     side.leg.push_back(
