@@ -44,6 +44,10 @@ options:
   --current-best C    posterior-mean | last-selection (default posterior-mean)
   --threads N         optimizer threads (default 2)
   --csv FILE          also write the table as CSV
+  --per-trial-csv F   write every trial's gap and optimizer seconds per iteration
+model settings (defaults are the paper's):
+  --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
+  --noise-variance B, --plane-restarts N, --ei-starts N
   --quiet             no progress on stderr
 
 functions:
@@ -66,9 +70,30 @@ int run(int argc, char** argv) {
     print_help();
     return 0;
   }
-  args.reject_unknown({"function", "dims", "optimum", "method", "user", "trials", "iterations",
-                       "seed", "grid", "levels", "resolution", "zoom-prefs", "current-best",
-                       "threads", "csv", "quiet"});
+  args.reject_unknown({"function",
+                       "dims",
+                       "optimum",
+                       "method",
+                       "user",
+                       "trials",
+                       "iterations",
+                       "seed",
+                       "grid",
+                       "levels",
+                       "resolution",
+                       "zoom-prefs",
+                       "current-best",
+                       "threads",
+                       "csv",
+                       "per-trial-csv",
+                       "quiet",
+                       "amplitude-prior",
+                       "length-scale-prior",
+                       "prior-log-variance",
+                       "btl-scale",
+                       "noise-variance",
+                       "plane-restarts",
+                       "ei-starts"});
   const std::string function = args.get_or("function", "gaussian");
   const int dims = args.get_int("dims", 5);
   const double optimum = args.get_double("optimum", std::numeric_limits<double>::quiet_NaN());
@@ -88,6 +113,20 @@ int run(int argc, char** argv) {
   options.threads = args.get_int("threads", 2);
   if (!sps::parse_method(method_text, options.method)) {
     throw cli::ArgError("--method: '" + method_text + "' is not sps, sps-random or sls");
+  }
+  options.model.amplitude_prior = args.get_double("amplitude-prior", options.model.amplitude_prior);
+  options.model.length_scale_prior =
+      args.get_double("length-scale-prior", options.model.length_scale_prior);
+  options.model.prior_log_variance =
+      args.get_double("prior-log-variance", options.model.prior_log_variance);
+  options.model.btl_scale = args.get_double("btl-scale", options.model.btl_scale);
+  options.model.noise_variance = args.get_double("noise-variance", options.model.noise_variance);
+  options.plane_restarts = args.get_int("plane-restarts", options.plane_restarts);
+  options.ei_restarts = args.get_int("ei-starts", options.ei_restarts);
+  if (!(options.model.amplitude_prior > 0 && options.model.length_scale_prior > 0 &&
+        options.model.prior_log_variance > 0 && options.model.btl_scale > 0 &&
+        options.model.noise_variance > 0)) {
+    throw cli::ArgError("model settings must be positive");
   }
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {
@@ -128,11 +167,23 @@ int run(int argc, char** argv) {
   }
   if (!quiet) std::cerr << "\n";
 
+  if (const auto path = args.get("per-trial-csv")) {
+    std::ofstream out(*path);
+    if (!out) throw std::runtime_error("cannot write " + *path);
+    out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds\n" << std::setprecision(17);
+    for (int trial = 0; trial < trials; ++trial) {
+      for (int it = 0; it < iterations; ++it) {
+        out << trial << "," << (seed + trial) << "," << (it + 1) << ","
+            << gaps[static_cast<std::size_t>(it)][static_cast<std::size_t>(trial)] << ","
+            << seconds[static_cast<std::size_t>(it)][static_cast<std::size_t>(trial)] << "\n";
+      }
+    }
+  }
   std::ofstream csv;
   if (const auto path = args.get("csv")) {
     csv.open(*path);
     if (!csv) throw std::runtime_error("cannot write " + *path);
-    csv << "iteration,mean_gap,sd_gap,median_gap,median_optimizer_seconds\n";
+    csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds\n";
   }
   std::cout << "# " << method_text << " on " << g->name() << " " << dims << "-D, user " << user
             << (user == "zoom" ? " (" + std::to_string(grid) + "x" + std::to_string(grid) + ", " +
