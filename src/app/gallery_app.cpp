@@ -69,9 +69,12 @@ struct BodyView {
     return true;
   }
 
-  // Renders into the framebuffer if the body, the camera or the size changed.
+  // Renders into the framebuffer if the body, the camera or the size changed. `fast` (while
+  // animating) draws a `scale`d region without multisampling unless `fast_multisample`; the
+  // settled image is drawn again at full quality.
   bool draw(const render::BodyRenderer& renderer, const render::Camera& camera, int camera_version,
-            int width, int height, int samples, const render::BodyStyle& style) {
+            int width, int height, int samples, const render::BodyStyle& style, bool fast = false,
+            float scale = 1.0f, bool fast_multisample = false) {
     width = std::max(width, 16);
     height = std::max(height, 16);
     if (fbo.width() != width || fbo.height() != height || fbo.samples() != samples ||
@@ -79,14 +82,30 @@ struct BodyView {
       fbo.resize(width, height, samples);
       dirty = true;
     }
-    if (!dirty && drawn_camera == camera_version) return false;
-    fbo.begin();
-    renderer.draw(mesh, camera, width, height, style);
-    fbo.end();
+    if (!dirty && drawn_camera == camera_version && !(drawn_fast && !fast)) return false;
+    const float s = fast ? std::clamp(scale, 0.25f, 1.0f) : 1.0f;
+    region_w = std::max(16, static_cast<int>(std::lround(static_cast<float>(width) * s)));
+    region_h = std::max(16, static_cast<int>(std::lround(static_cast<float>(height) * s)));
+    const bool multisample = !fast || fast_multisample;
+    fbo.begin(region_w, region_h, multisample);
+    renderer.draw(mesh, camera, region_w, region_h, style);
+    fbo.end(region_w, region_h, multisample);
     dirty = false;
+    drawn_fast = fast;
     drawn_camera = camera_version;
     return true;
   }
+
+  void uv(ImVec2& uv0, ImVec2& uv1) const {
+    float a[2], b[2];
+    fbo.region_uv(region_w, region_h, a, b);
+    uv0 = ImVec2(a[0], a[1]);
+    uv1 = ImVec2(b[0], b[1]);
+  }
+
+  int region_w = 0;
+  int region_h = 0;
+  bool drawn_fast = false;
 };
 
 std::string format_metres(double m) {
@@ -108,6 +127,9 @@ class GalleryApp {
  public:
   explicit GalleryApp(const GalleryOptions& options) : options_(options) {
     camera_.set_preset(options.view);
+    active_preset_ = options.view == render::ViewPreset::kFront  ? 0
+                     : options.view == render::ViewPreset::kSide ? 1
+                                                                 : 2;
     save_path_ = options.save_path;
   }
   ~GalleryApp() { shutdown(); }
@@ -178,6 +200,7 @@ class GalleryApp {
 
   std::unique_ptr<render::BodyRenderer> renderer_;
   render::Camera camera_;
+  int active_preset_ = 0;  // index into the view buttons, -1 after a free orbit
   int camera_version_ = 0;
   std::vector<BodyView> cells_;
   BodyView best_view_;
@@ -595,12 +618,10 @@ void GalleryApp::render_cells() {
   const render::BodyStyle style = cell_style();
   // While bodies morph, cells render without multisampling (llvmpipe pays 4x per sample);
   // the settled grid is drawn again with full antialiasing.
-  const int samples =
-      animation_ != Animation::kNone || ImGui::IsMouseDragging(ImGuiMouseButton_Left)
-          ? options_.animation_samples
-          : options_.samples;
+  const bool fast = animation_ != Animation::kNone || ImGui::IsMouseDragging(ImGuiMouseButton_Left);
   for (auto& cell : cells_) {
-    cell.draw(*renderer_, camera_, camera_version_, cell_pixels_, cell_pixels_, samples, style);
+    cell.draw(*renderer_, camera_, camera_version_, cell_pixels_, cell_pixels_, options_.samples,
+              style, fast, options_.animation_scale, options_.animation_samples > 0);
   }
   render::BodyStyle preview = style;
   best_view_.draw(*renderer_, camera_, camera_version_, 200, 300, options_.samples, preview);
@@ -652,8 +673,9 @@ void GalleryApp::draw_toolbar() {
   const char* labels[] = {"Front", "Side", "3/4"};
   for (int i = 0; i < 3; ++i) {
     ImGui::SameLine();
-    if (ImGui::Button(labels[i])) {
+    if (ImGui::RadioButton(labels[i], active_preset_ == i)) {
       camera_.set_preset(presets[i]);
+      active_preset_ = i;
       ++camera_version_;
     }
   }
@@ -690,6 +712,7 @@ void GalleryApp::draw_grid(float size) {
       ImGui::PopID();
       if (dragging && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
         camera_.orbit(io.MouseDelta.x, io.MouseDelta.y);
+        active_preset_ = -1;  // a free orbit
         ++camera_version_;
       }
       const float drag_threshold = io.MouseDragThreshold * io.MouseDragThreshold;
@@ -699,8 +722,10 @@ void GalleryApp::draw_grid(float size) {
                   << std::endl;
       }
       if (static_cast<size_t>(index) < cells_.size()) {
-        dl->AddImage(texture_id(cells_[static_cast<size_t>(index)].fbo.texture()), p0, p1,
-                     ImVec2(0, 1), ImVec2(1, 0));
+        const BodyView& view = cells_[static_cast<size_t>(index)];
+        ImVec2 uv0, uv1;
+        view.uv(uv0, uv1);
+        dl->AddImage(texture_id(view.fbo.texture()), p0, p1, uv0, uv1);
       }
       if (hovered && !busy) {
         hovered_cell_ = index;
@@ -779,7 +804,8 @@ void GalleryApp::draw_side_panel() {
   }
 
   ImGui::Separator();
-  ImGui::Text("History (%d planes)", session_->planes_done());
+  ImGui::Text("History: %d finished plane%s (click to inspect)", session_->planes_done(),
+              session_->planes_done() == 1 ? "" : "s");
   ImGui::BeginChild("history", ImVec2(0, 128), true, ImGuiWindowFlags_HorizontalScrollbar);
   for (size_t i = 0; i < history_views_.size(); ++i) {
     if (i > 0) ImGui::SameLine();
@@ -925,7 +951,15 @@ void GalleryApp::draw_ui() {
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
   const float side_width = 430.0f;
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  ImGui::BeginChild("left", ImVec2(avail.x - side_width, 0), false,
+  const float toolbar_height = ImGui::GetFrameHeightWithSpacing();
+  const int n = session_->settings().grid_size;
+  const float fixed_grid = static_cast<float>(n * options_.cell_size + (n - 1) * 6);
+  const float grid_size = options_.cell_size > 0
+                              ? fixed_grid
+                              : std::min(avail.x - side_width, avail.y - toolbar_height);
+  // The side panel sits right beside the grid and takes the rest of the width.
+  const float left_width = std::max({grid_size, 660.0f, 96.0f});
+  ImGui::BeginChild("left", ImVec2(std::min(left_width, avail.x - 200.0f), 0), false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
   draw_toolbar();
   const ImVec2 grid_avail = ImGui::GetContentRegionAvail();
@@ -973,10 +1007,11 @@ void GalleryApp::benchmark_step() {
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window_, &fb_w, &fb_h);
     std::printf(
-        "grid: %dx%d cells of %dx%d px, MSAA %d samples at rest, %d while animating; "
-        "window %dx%d\n",
+        "grid: %dx%d cells of %dx%d px, MSAA %d samples at rest; while animating %s at %.2f "
+        "resolution; window %dx%d\n",
         session_->settings().grid_size, session_->settings().grid_size, cell_pixels_, cell_pixels_,
-        options_.samples, options_.animation_samples, fb_w, fb_h);
+        options_.samples, options_.animation_samples > 0 ? "MSAA" : "no MSAA",
+        static_cast<double>(options_.animation_scale), fb_w, fb_h);
     std::printf("launch to first grid: %.0f ms\n", launch_to_first_grid_ * 1000.0);
     std::printf("zoom animation frames: %zu over %d clicks\n", animation_frame_ms_.size(),
                 benchmark_clicks_done_);

@@ -23,9 +23,10 @@ struct GalleryOptions {
 
   int window_width = 1600;
   int window_height = 1000;
-  int cell_size = 0;          // cell edge in pixels; 0 = fit the window
-  int samples = 4;            // MSAA samples per cell
-  int animation_samples = 0;  // MSAA samples while the grid animates (speed on llvmpipe)
+  int cell_size = 0;             // cell edge in pixels; 0 = fit the window
+  int samples = 4;               // MSAA samples per cell
+  int animation_samples = 0;     // > 0: keep MSAA while the grid animates (costly on llvmpipe)
+  float animation_scale = 1.0f;  // cell resolution factor while the grid animates
   double zoom_seconds = 1.5;
   render::ViewPreset view = render::ViewPreset::kFront;
   std::string save_path = "body.glb";

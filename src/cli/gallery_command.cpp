@@ -24,7 +24,8 @@ const char* const kUsage =
     "  --window WxH            window size (default 1600x1000)\n"
     "  --cell-size PX          grid cell size in pixels (default: fit the window)\n"
     "  --samples N             MSAA samples per cell (default 4, 0 = off)\n"
-    "  --animation-samples N   MSAA samples while animating (default 0)\n"
+    "  --animation-samples N   N > 0 keeps MSAA while animating (default 0: off)\n"
+    "  --animation-scale F     cell resolution factor while animating (default 1)\n"
     "  --zoom-seconds S        zoom animation length (default 1.5)\n"
     "  --screenshot FILE.png   F12 writes a screenshot of the window there\n"
     "  --screenshot-after-frames N   write it after N frames (with --quit-after-screenshot)\n"
@@ -53,6 +54,7 @@ int run(int argc, char** argv) {
                        "cell-size",
                        "samples",
                        "animation-samples",
+                       "animation-scale",
                        "zoom-seconds",
                        "screenshot",
                        "screenshot-after-frames",
@@ -96,6 +98,10 @@ int run(int argc, char** argv) {
   o.cell_size = args.get_int("cell-size", 0);
   o.samples = args.get_int("samples", 4);
   o.animation_samples = args.get_int("animation-samples", 0);
+  o.animation_scale = static_cast<float>(args.get_double("animation-scale", 1.0));
+  if (!(o.animation_scale >= 0.25f && o.animation_scale <= 1.0f)) {
+    throw cli::ArgError("--animation-scale must be between 0.25 and 1");
+  }
   o.zoom_seconds = args.get_double("zoom-seconds", 1.5);
   if (!(o.zoom_seconds > 0.0)) throw cli::ArgError("--zoom-seconds must be positive");
   o.screenshot_path = args.get_or("screenshot", "");

@@ -72,7 +72,14 @@ void BodyRenderer::draw(const MeshGpu& mesh, const Camera& camera, int width, in
   glUniformMatrix4fv(uniform(body_, "u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
   glUniform3fv(uniform(body_, "u_albedo"), 1, glm::value_ptr(style.albedo));
   glUniform1f(uniform(body_, "u_floor_y"), mesh.bounds_min().y);
+  if (style.cull_back_faces) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(mesh.counter_clockwise() ? GL_CCW : GL_CW);
+  }
   mesh.draw();
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
   glDisable(GL_DEPTH_TEST);
   glUseProgram(0);
 }

@@ -16,6 +16,9 @@ struct BodyStyle {
   glm::vec3 background_bottom{0.60f, 0.62f, 0.66f};
   float shadow_strength = 0.55f;
   bool shadow = true;
+  // Closed, counter-clockwise meshes (SMPL family) lose nothing by culling back faces, and a
+  // software rasterizer saves half its triangle work.
+  bool cull_back_faces = true;
 };
 
 class BodyRenderer {

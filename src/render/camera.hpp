@@ -19,9 +19,9 @@ const char* view_preset_name(ViewPreset preset);
 struct Camera {
   float yaw_degrees = 0.0f;    // 0 = looking at the body's front (from +z), 90 = its left side
   float pitch_degrees = 6.0f;  // positive = looking slightly down
-  float distance = 4.6f;       // metres from the target
+  float distance = 4.0f;       // metres from the target
   float fov_y_degrees = 30.0f;
-  glm::vec3 target{0.0f, 0.95f, 0.0f};
+  glm::vec3 target{0.0f, 0.98f, 0.0f};
 
   void set_preset(ViewPreset preset);
   // Drag by (dx, dy) pixels: yaw follows dx, pitch follows dy (clamped to +-60 degrees).

@@ -41,20 +41,22 @@ void CellFramebuffer::resize(int width, int height, int samples) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_2D, 0);
 
-  depth_ = Renderbuffer::create();
-  glBindRenderbuffer(GL_RENDERBUFFER, depth_.get());
   if (samples_ > 0) {
+    depth_ = Renderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_.get());
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_DEPTH24_STENCIL8, width, height);
-  } else {
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
   }
 
+  depth_single_ = Renderbuffer::create();
+  glBindRenderbuffer(GL_RENDERBUFFER, depth_single_.get());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
   resolve_fbo_ = Framebuffer::create();
   glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_.get());
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_.get(), 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                            depth_single_.get());
   if (samples_ == 0) {
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                              depth_.get());
+    depth_.reset();
     colour_ms_.reset();
     draw_fbo_.reset();
   }
@@ -76,19 +78,31 @@ void CellFramebuffer::resize(int width, int height, int samples) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void CellFramebuffer::begin() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, samples_ > 0 ? draw_fbo_.get() : resolve_fbo_.get());
-  glViewport(0, 0, width_, height_);
+void CellFramebuffer::begin(int region_w, int region_h, bool multisample) const {
+  const bool ms = multisample && samples_ > 0;
+  glBindFramebuffer(GL_FRAMEBUFFER, ms ? draw_fbo_.get() : resolve_fbo_.get());
+  glViewport(0, 0, std::clamp(region_w, 1, width_), std::clamp(region_h, 1, height_));
 }
 
-void CellFramebuffer::end() const {
-  if (samples_ > 0) {
+void CellFramebuffer::end(int region_w, int region_h, bool multisample) const {
+  if (multisample && samples_ > 0) {
+    const int w = std::clamp(region_w, 1, width_);
+    const int h = std::clamp(region_h, 1, height_);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_.get());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
-    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
-                      GL_NEAREST);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void CellFramebuffer::region_uv(int region_w, int region_h, float uv0[2], float uv1[2]) const {
+  const float u = width_ > 0 ? static_cast<float>(std::clamp(region_w, 1, width_)) / width_ : 1.0f;
+  const float v =
+      height_ > 0 ? static_cast<float>(std::clamp(region_h, 1, height_)) / height_ : 1.0f;
+  uv0[0] = 0.0f;
+  uv0[1] = v;
+  uv1[0] = u;
+  uv1[1] = 0.0f;
 }
 
 std::vector<std::uint8_t> CellFramebuffer::read_pixels() const {

@@ -19,9 +19,17 @@ class CellFramebuffer {
   void resize(int width, int height, int samples);
 
   // Binds the drawing target and sets the viewport to the whole cell.
-  void begin() const;
+  void begin() const { begin(width_, height_, true); }
   // Resolves the multisampled image into texture() and binds framebuffer 0 again.
-  void end() const;
+  void end() const { end(width_, height_, true); }
+
+  // Draws only into the bottom-left region_w x region_h pixels (a cheaper preview while
+  // animating), with or without multisampling; no reallocation either way. Show the result
+  // with region_uv().
+  void begin(int region_w, int region_h, bool multisample) const;
+  void end(int region_w, int region_h, bool multisample) const;
+  // Texture coordinates of a region's top-left and bottom-right corners (V flipped for UIs).
+  void region_uv(int region_w, int region_h, float uv0[2], float uv1[2]) const;
 
   GLuint texture() const { return texture_.get(); }
   int width() const { return width_; }
@@ -37,8 +45,9 @@ class CellFramebuffer {
   int samples_ = 0;
   Framebuffer draw_fbo_;  // multisampled (only when samples_ > 0)
   Renderbuffer colour_ms_;
-  Renderbuffer depth_;
-  Framebuffer resolve_fbo_;  // texture_ attached
+  Renderbuffer depth_;         // multisampled when samples_ > 0
+  Renderbuffer depth_single_;  // for drawing straight into the texture
+  Framebuffer resolve_fbo_;    // texture_ + depth_single_ attached
   Texture texture_;
 };
 

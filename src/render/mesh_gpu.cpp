@@ -13,6 +13,11 @@ void MeshGpu::upload(const float* positions, const float* normals, int vertex_co
   if (vertex_count <= 0 || index_count <= 0 || index_count % 3 != 0) {
     throw std::invalid_argument("MeshGpu::upload: empty mesh or index count not a multiple of 3");
   }
+  for (int i = 0; i < index_count; ++i) {
+    if (indices[i] >= static_cast<std::uint32_t>(vertex_count)) {
+      throw std::invalid_argument("MeshGpu::upload: index out of range");
+    }
+  }
   vao_ = VertexArray::create();
   positions_ = Buffer::create();
   normals_ = Buffer::create();
@@ -38,6 +43,21 @@ void MeshGpu::upload(const float* positions, const float* normals, int vertex_co
   vertex_count_ = vertex_count;
   index_count_ = index_count;
   measure(positions, vertex_count);
+
+  // Signed volume (divergence theorem) tells the winding of a closed mesh's outward faces.
+  double volume = 0.0;
+  for (int t = 0; t + 2 < index_count; t += 3) {
+    const float* a = positions + 3 * static_cast<size_t>(indices[t]);
+    const float* b = positions + 3 * static_cast<size_t>(indices[t + 1]);
+    const float* c = positions + 3 * static_cast<size_t>(indices[t + 2]);
+    volume += static_cast<double>(a[0]) *
+                  (static_cast<double>(b[1]) * c[2] - static_cast<double>(b[2]) * c[1]) +
+              static_cast<double>(a[1]) *
+                  (static_cast<double>(b[2]) * c[0] - static_cast<double>(b[0]) * c[2]) +
+              static_cast<double>(a[2]) *
+                  (static_cast<double>(b[0]) * c[1] - static_cast<double>(b[1]) * c[0]);
+  }
+  counter_clockwise_ = volume >= 0.0;
 }
 
 void MeshGpu::update(const float* positions, const float* normals, int vertex_count) {

@@ -35,6 +35,8 @@ class MeshGpu {
   const glm::vec3& bounds_min() const { return min_; }
   const glm::vec3& bounds_max() const { return max_; }
   const Footprint& footprint() const { return footprint_; }
+  // Whether the outward faces wind counter-clockwise (positive signed volume at upload).
+  bool counter_clockwise() const { return counter_clockwise_; }
 
  private:
   void measure(const float* positions, int vertex_count);
@@ -48,6 +50,7 @@ class MeshGpu {
   glm::vec3 min_{0.0f};
   glm::vec3 max_{0.0f};
   Footprint footprint_;
+  bool counter_clockwise_ = true;
 };
 
 }  // namespace render
