@@ -59,6 +59,17 @@ struct BodyMesh {
 // too many or non-finite betas.
 BodyMesh evaluate(const Model& model, const Eigen::VectorXf& betas);
 
+// Evaluates several bodies at once (e.g. the nine of a 3x3 grid): one matrix-matrix product
+// reads shapedirs once instead of once per body, which matters with hundreds of components.
+// Same results and errors as evaluate().
+std::vector<BodyMesh> evaluate_batch(const Model& model, const std::vector<Eigen::VectorXf>& betas);
+
+// The same, writing into existing meshes so their storage is reused from frame to frame
+// (no allocation or page faults when the sizes already match).
+void evaluate_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& mesh);
+void evaluate_batch_into(const Model& model, const std::vector<Eigen::VectorXf>& betas,
+                         std::vector<BodyMesh>& meshes);
+
 // Translates mesh and joints so the lowest vertex touches y = 0 (feet on the ground), as
 // display and export want; returns the applied y offset.
 float place_on_ground(BodyMesh& mesh);

@@ -7,6 +7,17 @@
 
 namespace cli {
 
+std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store) {
+  store.assign(argv, argv + argc);
+  for (auto& a : store) {
+    if (a == "-o") a = "--output";
+  }
+  std::vector<char*> out;
+  for (auto& a : store) out.push_back(a.data());
+  out.push_back(nullptr);
+  return out;
+}
+
 std::size_t shape_value_count(const ArgParser& args) {
   return std::max(args.get_doubles("betas").size(), args.get_doubles("x").size());
 }

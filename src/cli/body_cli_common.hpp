@@ -3,11 +3,16 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "body/body_model.hpp"
 #include "cli/arg_parser.hpp"
 
 namespace cli {
+
+// argv with "-o" spelled "--output", so that a value list (--betas 1 -2 -o out.glb) ends at
+// it: the shared parser reads values until the next "--" option. The strings live in `store`.
+std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store);
 
 // --model FILE (else the embedded default model), keeping --components N (default 10, or
 // more if more betas/x values are given; 0 = all).

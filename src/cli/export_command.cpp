@@ -1,5 +1,7 @@
 // `export`: write one body as glTF (.glb or .gltf) from the command line.
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "body/gltf_export.hpp"
 #include "cli/arg_parser.hpp"
@@ -8,7 +10,11 @@
 
 namespace {
 
-int run(int argc, char** argv) {
+int run(int argc_in, char** argv_in) {
+  std::vector<std::string> store;
+  auto argv_vec = cli::normalize_output_flag(argc_in, argv_in, store);
+  const int argc = argc_in;
+  char** argv = argv_vec.data();
   const cli::ArgParser args(argc, argv, {"no-morph"}, {"betas", "x"});
   if (args.has("help")) {
     std::cout << "usage: sequential-gallery export [--model FILE.npz] [--components N]\n"

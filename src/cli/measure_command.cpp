@@ -2,6 +2,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "body/measurements.hpp"
 #include "cli/arg_parser.hpp"
@@ -18,7 +20,11 @@ void line(const char* label, double value, double at) {
   }
 }
 
-int run(int argc, char** argv) {
+int run(int argc_in, char** argv_in) {
+  std::vector<std::string> store;
+  auto argv_vec = cli::normalize_output_flag(argc_in, argv_in, store);
+  const int argc = argc_in;
+  char** argv = argv_vec.data();
   const cli::ArgParser args(argc, argv, {}, {"betas", "x"});
   if (args.has("help")) {
     std::cout << "usage: sequential-gallery measure [--model FILE.npz] [--components N]\n"

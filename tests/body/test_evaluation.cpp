@@ -132,3 +132,64 @@ TEST_CASE("unit box mapping: beta = 6x - 3 and back", "[evaluation]") {
   CHECK(b[2] == Approx(3.0));
   CHECK(body::unit_from_betas(b).isApprox(x));
 }
+
+TEST_CASE("evaluate_batch equals evaluate body by body", "[evaluation]") {
+  const auto path = fixtures::scratch_dir("eval-batch") / "cyl.npz";
+  fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model()));
+  for (bool prepared : {true, false}) {
+    auto m = body::load_model(path, 10);
+    if (!prepared) m.joint_shapedirs.resize(0, 0);  // the J_regressor * vertices path
+    std::vector<Eigen::VectorXf> betas;
+    for (int i = 0; i < 9; ++i) {
+      Eigen::VectorXf b(1 + i);  // different lengths, padded with zeros
+      for (int k = 0; k <= i; ++k) b[k] = 0.1f * static_cast<float>(k - i) + 0.05f;
+      betas.push_back(b);
+    }
+    const auto batch = body::evaluate_batch(m, betas);
+    REQUIRE(batch.size() == 9);
+    for (std::size_t i = 0; i < 9; ++i) {
+      const auto one = body::evaluate(m, betas[i]);
+      CHECK(batch[i].vertices.isApprox(one.vertices, 1e-6f));
+      CHECK(batch[i].joints.isApprox(one.joints, 1e-5f));
+      CHECK(batch[i].normals.isApprox(one.normals, 1e-5f));
+    }
+    betas.push_back(Eigen::VectorXf::Zero(11));
+    CHECK_THROWS_AS(body::evaluate_batch(m, betas), std::invalid_argument);
+  }
+}
+
+TEST_CASE("evaluate_batch with many components: plane (rank 3) and random betas", "[evaluation]") {
+  fixtures::Cylinder c;
+  c.components = 40;  // above the batch threshold, so the matrix-product path runs
+  c.segments = 16;
+  c.rings = 12;
+  const auto path = fixtures::scratch_dir("eval-batch-many") / "cyl40.npz";
+  fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
+  const auto m = body::load_model(path, 0);
+  REQUIRE(m.component_count() == 40);
+  Eigen::VectorXf centre(40), u(40), v(40);
+  for (int k = 0; k < 40; ++k) {
+    centre[k] = 0.02f * static_cast<float>(k % 7) - 0.05f;
+    u[k] = 0.03f * std::sin(static_cast<float>(k));
+    v[k] = 0.03f * std::cos(static_cast<float>(3 * k));
+  }
+  for (bool plane : {true, false}) {
+    std::vector<Eigen::VectorXf> betas;
+    for (int cell = 0; cell < 9; ++cell) {
+      if (plane) {
+        betas.push_back(centre + static_cast<float>(cell % 3 - 1) * u +
+                        static_cast<float>(cell / 3 - 1) * v);
+      } else {
+        Eigen::VectorXf b(40);
+        for (int k = 0; k < 40; ++k) b[k] = 0.1f * std::sin(static_cast<float>(7 * cell + k));
+        betas.push_back(b);
+      }
+    }
+    const auto batch = body::evaluate_batch(m, betas);
+    for (std::size_t i = 0; i < 9; ++i) {
+      const auto one = body::evaluate(m, betas[i]);
+      CHECK((batch[i].vertices - one.vertices).cwiseAbs().maxCoeff() < 1e-5f);
+      CHECK((batch[i].joints - one.joints).cwiseAbs().maxCoeff() < 1e-5f);
+    }
+  }
+}
