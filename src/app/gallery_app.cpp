@@ -876,7 +876,7 @@ void GalleryApp::draw_resume_prompt() {
   if (ImGui::BeginPopupModal("Resume session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     const auto& s = *pending_resume_;
     ImGui::Text("A previous session was found: %s", options_.session_path.string().c_str());
-    ImGui::Text("Model: %s, %d components, %d planes done, %d clicks on the current plane",
+    ImGui::Text("Model: %s, %d components, %d finished plane(s), %d click(s) on the current plane",
                 s.settings().model_path.empty() ? "default" : s.settings().model_path.c_str(),
                 s.settings().components, s.planes_done(), s.clicks_on_plane());
     if (ImGui::Button("Resume", ImVec2(140, 0))) {
