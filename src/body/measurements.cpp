@@ -7,7 +7,10 @@
 // trochanter/hip ~0.53 H, crotch ~0.47 H) put each landmark inside a band; within the band the
 // tailoring definitions pick the slice (chest = maximum girth, waist = minimum girth of the
 // torso, hip = maximum girth below the waist). Bands stop below the armpit (0.75 H) so
-// T-posed arms stay out, and the hip band starts at 0.45 H where the legs split.
+// T-posed arms stay out, and the hip band starts at 0.45 H where the legs split. Arms that
+// hang beside the body are separate slice pieces and are dropped; where they merge with the
+// torso at the armpit (short bodies in A-pose reach that below 0.75 H) the girth jumps by
+// more than 15% between neighbouring slices and the chest search stops there.
 #include "body/measurements.hpp"
 
 #include <cmath>
@@ -48,8 +51,13 @@ Measurements measure(const Model& model, const BodyMesh& mesh) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   m.chest_height = m.waist_height = m.hips_height = nan;
 
-  for (int i = 130; i <= 150; ++i) {  // chest: max in [0.65, 0.75] H
+  double previous = 0.0;
+  for (int i = 130; i <= 150; ++i) {  // chest: max in [0.65, 0.75] H, below the armpits
     const double g = girth_at(i);
+    // Arms that hang close (A-pose) join the torso slice at the armpit: the girth jumps from
+    // one slice to the next (0.5% of H apart) by far more than a chest ever grows. Stop there.
+    if (previous > 0.0 && g > 1.15 * previous) break;
+    previous = g;
     if (g > m.chest) m.chest = g, m.chest_height = H * i / steps;
   }
   int waist_i = -1;

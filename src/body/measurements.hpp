@@ -19,7 +19,8 @@ struct Measurements {
 
 // Landmarks (see measurements.cpp for the sources): with H the stature and the body standing
 // in y, slices every H/200 through three bands of relative height,
-//   chest = largest torso girth in [0.65, 0.75] H   (bust line, below the armpits),
+//   chest = largest torso girth in [0.65, 0.75] H   (bust line, below the armpits; the
+//           search stops where the girth jumps by > 15% between slices: arms joining),
 //   waist = smallest torso girth in [0.56, 0.67] H  (natural waist),
 //   hips  = largest torso girth from 0.45 H up to the waist slice (seat / buttocks).
 // A girth is the perimeter of the convex hull of the slice piece that surrounds the body's
