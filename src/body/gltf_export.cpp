@@ -212,15 +212,26 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   gmesh.name = model.name.empty() ? "body" : model.name;
   if (morph) {
     tinygltf::Value::Array names;
-    for (Eigen::Index k = 0; k < K; ++k) {
+    auto add_target = [&](const float* data, const char* suffix, Eigen::Index k, double w) {
       std::map<std::string, int> target;
-      target["POSITION"] =
-          bb.add_vec3(model.shapedirs.col(k).data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      target["POSITION"] = bb.add_vec3(data, V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
       prim.targets.push_back(target);
-      char label[32];
-      std::snprintf(label, sizeof label, "shape_%02d", static_cast<int>(k));
+      char label[48];
+      std::snprintf(label, sizeof label, "shape_%02d%s", static_cast<int>(k), suffix);
       names.emplace_back(std::string(label));
-      gmesh.weights.push_back(static_cast<double>(betas[k]));
+      gmesh.weights.push_back(w);
+    };
+    Eigen::VectorXf scaled(3 * static_cast<Eigen::Index>(V));
+    for (Eigen::Index k = 0; k < K; ++k) {
+      const double b = betas[k];
+      if (options.morph_encoding == MorphEncoding::betas) {
+        add_target(model.shapedirs.col(k).data(), "", k, b);
+      } else {
+        scaled = 3.0f * model.shapedirs.col(k);
+        add_target(scaled.data(), "_pos", k, b > 0.0 ? b / 3.0 : 0.0);
+        scaled = -scaled;
+        add_target(scaled.data(), "_neg", k, b < 0.0 ? -b / 3.0 : 0.0);
+      }
     }
     tinygltf::Value::Object extras;
     extras["targetNames"] = tinygltf::Value(names);
@@ -235,6 +246,11 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   info["components"] = tinygltf::Value(static_cast<int>(K));
   info["betas"] = number_array(betas);
   info["ground_offset_m"] = tinygltf::Value(static_cast<double>(offset));
+  info["morph_targets"] = tinygltf::Value(
+      !morph ? std::string("none (shape baked)")
+      : options.morph_encoding == MorphEncoding::betas
+          ? std::string("one per component, weight = beta")
+          : std::string("shape_NN_pos/_neg = +-3 sigma, weight = max(+-beta, 0) / 3"));
   tinygltf::Node body_node;
   body_node.name = gmesh.name;
   body_node.mesh = 0;

@@ -14,9 +14,23 @@ class ExportError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How shape components become morph targets (shape keys).
+enum class MorphEncoding {
+  // Two targets per component, "shape_NN_pos" = +3 sigma and "shape_NN_neg" = -3 sigma, with
+  // weights max(+-beta, 0) / 3: every weight lies in [0, 1] for |beta| <= 3. The default,
+  // because Blender's glTF importer clamps negative shape-key values to 0
+  // (KhronosGroup/glTF-Blender-IO issue #1364), which would silently change the body.
+  split_signed,
+  // One target per component ("shape_NN" = the component) with weight = beta (may be < 0).
+  betas,
+};
+
 struct ExportOptions {
-  bool morph_targets = true;  // the shape components as morph targets, betas as weights
-  // Binary (.glb) or text (.gltf + embedded buffer) follows the file extension.
+  bool morph_targets = true;  // the shape components as morph targets (else the shape is baked)
+  MorphEncoding morph_encoding = MorphEncoding::split_signed;
+  // Binary (.glb) or text (.gltf + embedded buffer) follows the file extension. Either way the
+  // base mesh is the model's template (mean body) and the default weights give the chosen
+  // body; without morph targets the base mesh is the chosen body.
 };
 
 // Writes atomically (temporary file, then rename): on any failure the previous file at `path`

@@ -33,13 +33,17 @@ expect "$out" "height  2\.7200 m"
 echo "== export"
 "$exe" export --model "$dir/cyl.npz" --betas 0.5 -0.5 1 -o "$dir/body.glb"
 "$exe" export --model "$dir/cyl.npz" --x 0.2 0.9 --no-morph -o "$dir/body.gltf"
+"$exe" export --model "$dir/cyl.npz" --betas 0.5 -0.5 --morph-betas -o "$dir/betas.gltf" |
+  grep -q "10 morph targets" || fail "--morph-betas: expected 10 morph targets"
+grep -q '"shape_09"' "$dir/betas.gltf" || fail "--morph-betas: no target shape_09"
 [ -s "$dir/body.glb" ] || fail "body.glb not written"
+grep -q '"shape_09_neg"' "$dir/body.glb" || fail "default: no split target shape_09_neg"
 [ "$(head -c 4 "$dir/body.glb")" = "glTF" ] || fail "body.glb is not binary glTF"
 grep -q '"targetNames"' "$dir/body.glb" || fail "no morph targets in body.glb"
 grep -q '"left_shoulder"' "$dir/body.gltf" || fail "no SMPL joint names in body.gltf"
 if grep -q '"targets"' "$dir/body.gltf"; then fail "--no-morph still wrote morph targets"; fi
 command -v node >/dev/null || fail "node is not installed (bash tools/setup.sh --test)"
-node "$validator" "$dir/body.glb" "$dir/body.gltf"
+node "$validator" "$dir/body.glb" "$dir/body.gltf" "$dir/betas.gltf"
 
 echo "== errors"
 before=$(md5sum <"$dir/body.glb")

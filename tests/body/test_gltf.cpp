@@ -70,11 +70,13 @@ int run_command(const std::string& cmd, std::string& output) {
 
 }  // namespace
 
-TEST_CASE("gltf: round trip of a .glb with morph targets", "[gltf]") {
+TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gltf]") {
   const auto model = cylinder();
   const auto betas = some_betas(10);
   const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
-  body::export_gltf(model, betas, path);
+  body::ExportOptions options;
+  options.morph_encoding = body::MorphEncoding::betas;
+  body::export_gltf(model, betas, path, options);
   const auto doc = read_back(path);
 
   auto mesh = body::evaluate(model, betas);
@@ -167,6 +169,47 @@ TEST_CASE("gltf: round trip of a .glb with morph targets", "[gltf]") {
   CHECK(doc.meshes[0].extras.Get("targetNames").Get(3).Get<std::string>() == "shape_03");
 }
 
+TEST_CASE("gltf: default morph targets split +-3 sigma with weights in [0, 1]", "[gltf]") {
+  const auto model = cylinder();
+  Eigen::VectorXf betas(10);
+  betas << 1.5f, -3.0f, 0.0f, 0.3f, -0.6f, 2.0f, -1.0f, 0.0f, 3.0f, -0.1f;
+  const auto path = fixtures::scratch_dir("gltf-split") / "split.gltf";
+  body::export_gltf(model, betas, path);  // default options
+  const auto doc = read_back(path);
+  const auto& gm = doc.meshes.at(0);
+  const auto& prim = gm.primitives.at(0);
+  REQUIRE(prim.targets.size() == 20);
+  REQUIRE(gm.weights.size() == 20);
+  for (int k = 0; k < 10; ++k) {
+    const double b = betas[k];
+    CHECK(gm.weights[static_cast<std::size_t>(2 * k)] == Approx(b > 0 ? b / 3 : 0.0));
+    CHECK(gm.weights[static_cast<std::size_t>(2 * k + 1)] == Approx(b < 0 ? -b / 3 : 0.0));
+  }
+  for (double w : gm.weights) {
+    CHECK(w >= 0.0);
+    CHECK(w <= 1.0);
+  }
+  CHECK(gm.extras.Get("targetNames").Get(2).Get<std::string>() == "shape_01_pos");
+  CHECK(gm.extras.Get("targetNames").Get(3).Get<std::string>() == "shape_01_neg");
+  // base + sum(w * target) is the chosen, grounded body.
+  auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  for (std::size_t t = 0; t < 20; ++t) {
+    const auto d = accessor_data<float>(doc, prim.targets[t].at("POSITION"), 3);
+    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += static_cast<float>(gm.weights[t]) * d[i];
+  }
+  auto mesh = body::evaluate(model, betas);
+  body::place_on_ground(mesh);
+  float max_err = 0.0f;
+  for (int v = 0; v < model.vertex_count(); ++v) {
+    for (int a = 0; a < 3; ++a) {
+      max_err = std::max(max_err,
+                         std::abs(pos[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
+    }
+  }
+  CHECK(max_err < 1e-5f);
+  CHECK(doc.nodes.at(0).extras.Get("betas").Get(1).GetNumberAsDouble() == Approx(-3.0));
+}
+
 TEST_CASE("gltf: .gltf without morph targets holds the shaped body", "[gltf]") {
   const auto model = cylinder(5, 4);
   Eigen::VectorXf betas(4);
@@ -243,18 +286,22 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
   const auto smpl = cylinder(24, 10);
   const auto other = cylinder(5, 16);
   std::vector<std::filesystem::path> files;
-  for (bool morph : {true, false}) {
+  for (int variant = 0; variant < 3; ++variant) {  // split morphs, beta morphs, baked
     for (const char* ext : {".glb", ".gltf"}) {
       body::ExportOptions opt;
-      opt.morph_targets = morph;
-      const auto p = dir / (std::string(morph ? "morph" : "plain") + ext);
+      opt.morph_targets = variant < 2;
+      opt.morph_encoding =
+          variant == 1 ? body::MorphEncoding::betas : body::MorphEncoding::split_signed;
+      const std::string name[] = {"split", "betas", "plain"};
+      const auto p = dir / (name[variant] + ext);
       body::export_gltf(smpl, some_betas(10), p, opt);
       files.push_back(p);
-      const auto q = dir / (std::string(morph ? "j5_morph" : "j5_plain") + ext);
+      const auto q = dir / ("j5_" + name[variant] + ext);
       body::export_gltf(other, some_betas(16), q, opt);
       files.push_back(q);
     }
   }
+  REQUIRE(files.size() == 12);
   for (const auto& f : files) {
     std::string report;
     const int rc = run_command("node '" + script + "' '" + f.string() + "'", report);
