@@ -6,6 +6,7 @@
 #include "app/body_scene.hpp"
 #include "body/model_loader.hpp"
 #include "cli/arg_parser.hpp"
+#include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
@@ -13,14 +14,16 @@
 namespace {
 
 const char* const kUsage =
-    "usage: sequential-gallery render [--model FILE.npz] [--betas B1,B2,...] -o OUT.png\n"
+    "usage: sequential-gallery render [--model FILE.npz] [--betas B1 B2 ...] -o OUT.png\n"
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
     "                                 [--components K] [--samples N]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
     "Without --model the embedded default body model is used; betas default to 0 (mean body).\n";
 
-int run(int argc, char** argv) {
-  cli::ArgParser args(argc, argv, {"help"});
+int run(int argc, char** argv_in) {
+  std::vector<std::string> store;  // "-o" spelled "--output" so that --betas 1 -2 -o x.png works
+  auto argv = cli::normalize_output_flag(argc, argv_in, store);
+  cli::ArgParser args(argc, argv.data(), {"help"}, {"betas"});
   if (args.has("help")) {
     std::cout << kUsage;
     return 0;
