@@ -5,6 +5,7 @@
 #include <string>
 
 #include <Eigen/QR>
+#include <Eigen/SparseCore>
 
 #include "body/body_model.hpp"
 #include "body/mesh_normals.hpp"
@@ -19,13 +20,16 @@ void Model::prepare() {
   }
   const Eigen::Index J = j_regressor.rows();
   const Eigen::Index K = shapedirs.cols();
-  joint_template = j_regressor * v_template;
+  // SMPL-family regressors are sparse (a few dozen vertices per joint): a sparse copy makes
+  // this J x V by V x 3K product cheap even for 400 components.
+  const Eigen::SparseMatrix<float, Eigen::RowMajor> regressor = j_regressor.sparseView();
+  joint_template = regressor * v_template;
   joint_shapedirs.resize(3 * J, K);
   // shapedirs is column-major 3V x K: column k viewed as V x 3 row-major is that component's
   // displacement field, so each column maps with one J x V by V x 3 product.
   for (Eigen::Index k = 0; k < K; ++k) {
     Eigen::Map<const Vertices> field(shapedirs.col(k).data(), v_template.rows(), 3);
-    Vertices jk = j_regressor * field;
+    const Vertices jk = regressor * field;
     Eigen::Map<Eigen::VectorXf>(joint_shapedirs.col(k).data(), 3 * J) =
         Eigen::Map<const Eigen::VectorXf>(jk.data(), 3 * J);
   }

@@ -4,6 +4,7 @@
 #include <zip.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -259,9 +260,23 @@ std::vector<Entry> encode_model(const std::map<std::string, Array>& arrays, cons
   return out;
 }
 
+namespace {
+
+// The per-process scratch root, removed at exit unless SG_KEEP_TEST_FILES is set.
+struct ScratchRoot {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("sg_body_tests_" + std::to_string(::getpid()));
+  ~ScratchRoot() {
+    std::error_code ec;
+    if (std::getenv("SG_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(path, ec);
+  }
+};
+
+}  // namespace
+
 std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("sg_body_tests_" + std::to_string(::getpid())) / name;
+  static ScratchRoot root;
+  const auto dir = root.path / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -59,7 +59,8 @@ std::map<std::string, Array> cylinder_model(const Cylinder& c = {});
 std::vector<Entry> encode_model(const std::map<std::string, Array>& arrays,
                                 const Encoding& enc = {}, bool float64 = false);
 
-// A unique scratch folder under the build tree's temp dir for a test.
+// A fresh scratch folder for a test under $TMPDIR/sg_body_tests_<pid>/ (removed at exit
+// unless SG_KEEP_TEST_FILES is set).
 std::filesystem::path scratch_dir(const std::string& name);
 
 }  // namespace fixtures
