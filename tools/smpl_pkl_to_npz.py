@@ -37,7 +37,7 @@ class FakeChumpy:
         self.state = state if isinstance(state, dict) else {"x": state}
 
     def to_array(self):
-        for key in ("x", "r", "a"):
+        for key in ("x", "r"):  # a terminal keeps x; derived objects may cache r
             value = self.state.get(key)
             if value is not None:
                 return to_array(value)
