@@ -38,7 +38,11 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
         value = "1";
       } else if (multi.count(name) != 0) {
         // Consume until the next option; negative numbers ("-1.5") are values, not options.
-        while (i + 1 < argc && !(argv[i + 1][0] == '-' && argv[i + 1][1] == '-')) {
+        // Stop at the next option ("--x", "-o", "-h"); "-1.5" and "-.5" are values.
+        const auto is_option = [](const char* a) {
+          return a[0] == '-' && a[1] != '\0' && a[1] != '.' && (a[1] < '0' || a[1] > '9');
+        };
+        while (i + 1 < argc && !is_option(argv[i + 1])) {
           if (!value.empty()) value += ' ';
           value += argv[++i];
         }
