@@ -1,0 +1,46 @@
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "cli/arg_parser.hpp"
+
+namespace {
+
+cli::ArgParser parse(std::vector<std::string> words, std::set<std::string> flags = {},
+                     std::set<std::string> multi = {}) {
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  return cli::ArgParser(static_cast<int>(argv.size()), argv.data(), std::move(flags),
+                        std::move(multi));
+}
+
+}  // namespace
+
+TEST_CASE("options, flags and values", "[cli]") {
+  const auto a = parse({"cmd", "--dims", "5", "--quiet", "--method=sls", "extra"}, {"quiet"});
+  CHECK(a.get_int("dims", 0) == 5);
+  CHECK(a.has("quiet"));
+  CHECK(a.get_or("method", "") == "sls");
+  CHECK(a.positional() == std::vector<std::string>{"extra"});
+  CHECK(a.get_double("missing", 2.5) == 2.5);
+}
+
+TEST_CASE("multi-value options take negative numbers and stop at -o", "[cli]") {
+  const auto a = parse({"cmd", "--betas", "1.5", "-2", "-.5,3", "-o", "out.glb", "--x", "0.1"}, {},
+                       {"betas", "x"});
+  CHECK(a.get_doubles("betas") == std::vector<double>{1.5, -2.0, -0.5, 3.0});
+  CHECK(a.get_or("output", "") == "out.glb");
+  CHECK(a.get_doubles("x") == std::vector<double>{0.1});
+}
+
+TEST_CASE("bad values are reported with the option name", "[cli]") {
+  CHECK_THROWS_WITH(parse({"cmd", "--dims", "five"}).get_int("dims", 1),
+                    Catch::Contains("--dims") && Catch::Contains("five"));
+  CHECK_THROWS_WITH(parse({"cmd", "--dims", "2.5"}).get_int("dims", 1), Catch::Contains("integer"));
+  CHECK_THROWS_WITH(parse({"cmd", "--x", "nan"}).get_double("x", 1), Catch::Contains("finite"));
+  CHECK_THROWS_AS(parse({"cmd", "--dims"}), cli::ArgError);
+  CHECK_THROWS_WITH(parse({"cmd", "--bogus", "1"}).reject_unknown({"dims"}),
+                    Catch::Contains("--bogus"));
+  CHECK_THROWS_WITH(parse({"cmd"}).require("model"), Catch::Contains("--model"));
+}

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The simulate command end to end: table on stdout, CSVs on disk, errors for bad options.
+set -euo pipefail
+bin=$1
+dir=$2
+rm -rf "$dir" && mkdir -p "$dir"
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$bin" simulate --help | grep -q -- "--function" || fail "help does not list --function"
+
+out=$("$bin" simulate --function gaussian --dims 4 --trials 2 --iterations 6 --resolution 100 \
+      --quiet --csv "$dir/t.csv" --per-trial-csv "$dir/p.csv")
+echo "$out"
+[ "$(echo "$out" | grep -cE '^ +[0-9]+ ')" = 6 ] || fail "expected 6 iteration rows"
+[ "$(wc -l < "$dir/t.csv")" = 7 ] || fail "CSV should have a header and 6 rows"
+[ "$(wc -l < "$dir/p.csv")" = 13 ] || fail "per-trial CSV should have a header and 12 rows"
+head -1 "$dir/t.csv" | grep -q "^iteration,mean_gap,sd_gap,median_gap" || fail "CSV header"
+# The gap never grows (best so far) and ends below where it started.
+awk -F, 'NR>1 { if (NR>2 && $2 > prev + 1e-15) bad=1; if (NR==2) first=$2; prev=$2 }
+         END { exit (bad || !(prev < first)) }' "$dir/t.csv" || fail "gap did not decrease"
+
+for m in sps-random sls; do
+  "$bin" simulate --method $m --user zoom --function rosenbrock --dims 3 --trials 1 \
+    --iterations 3 --quiet > /dev/null || fail "method $m"
+done
+"$bin" simulate --user zoom --zoom-prefs --function ackley --dims 3 --trials 1 --iterations 3 \
+  --quiet > /dev/null || fail "zoom prefs"
+
+# Bad input: a clear message and a non-zero exit, never a crash.
+for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2" "--bogus 1" \
+            "--function rosenbrock --optimum 0.5"; do
+  if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
+  echo "$err" | grep -qi "error" || fail "no error message for: $args"
+done
+echo "ok"
