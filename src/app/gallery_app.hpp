@@ -39,6 +39,7 @@ struct GalleryOptions {
   // Benchmark: click automatically through `benchmark_clicks` cells, measure frame times
   // during the zoom animations and the launch-to-first-grid time, print them and exit.
   int benchmark_clicks = 0;
+  bool benchmark_breakdown = false;  // also time the phases of each frame (adds glFinish)
   std::chrono::steady_clock::time_point launch_time = std::chrono::steady_clock::now();
 };
 

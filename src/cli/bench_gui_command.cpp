@@ -15,7 +15,7 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery bench-gui [--clicks N] [--cell-size PX] [--grid 3|5]\n"
     "                                    [--samples N] [--animation-samples N] [--model FILE]\n"
-    "                                    [--animation-scale F]\n"
+    "                                    [--animation-scale F] [--breakdown]\n"
     "Opens the viewer, clicks N cells automatically (default 12, i.e. 3 planes), and prints\n"
     "median / 95th percentile frame times of the zoom animations and the launch-to-first-grid\n"
     "time. Uses a throw-away session file. Example without a display:\n"
@@ -23,13 +23,13 @@ const char* const kUsage =
 
 int run(int argc, char** argv) {
   const auto launch = std::chrono::steady_clock::now();
-  cli::ArgParser args(argc, argv, {"help"});
+  cli::ArgParser args(argc, argv, {"help", "breakdown"});
   if (args.has("help")) {
     std::cout << kUsage;
     return 0;
   }
-  args.reject_unknown({"help", "clicks", "cell-size", "grid", "samples", "animation-samples",
-                       "animation-scale", "model"});
+  args.reject_unknown({"help", "breakdown", "clicks", "cell-size", "grid", "samples",
+                       "animation-samples", "animation-scale", "model"});
   app::GalleryOptions o;
   o.launch_time = launch;
   if (const auto m = args.get("model")) o.model_path = *m;
@@ -44,6 +44,7 @@ int run(int argc, char** argv) {
     throw cli::ArgError("--animation-scale must be between 0.25 and 1");
   }
   o.benchmark_clicks = args.get_int("clicks", 12);
+  o.benchmark_breakdown = args.has("breakdown");
   if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");
   const int grid_px = o.grid_size * o.cell_size + (o.grid_size - 1) * 6;
   o.window_width = grid_px + 16 + 440;

@@ -31,12 +31,13 @@ void CellFramebuffer::resize(int width, int height, int samples) {
   width_ = width;
   height_ = height;
   samples_ = samples;
+  linear_ = false;
 
   texture_ = Texture::create();
   glBindTexture(GL_TEXTURE_2D, texture_.get());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_2D, 0);
@@ -103,6 +104,16 @@ void CellFramebuffer::region_uv(int region_w, int region_h, float uv0[2], float 
   uv0[1] = v;
   uv1[0] = u;
   uv1[1] = 0.0f;
+}
+
+void CellFramebuffer::set_linear_filtering(bool linear) {
+  if (linear == linear_ || !texture_) return;
+  linear_ = linear;
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glBindTexture(GL_TEXTURE_2D, texture_.get());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 std::vector<std::uint8_t> CellFramebuffer::read_pixels() const {

@@ -32,6 +32,9 @@ class CellFramebuffer {
   void region_uv(int region_w, int region_h, float uv0[2], float uv1[2]) const;
 
   GLuint texture() const { return texture_.get(); }
+  // Sampling of texture(): nearest (the default; exact and cheapest when shown 1:1) or linear
+  // (when shown scaled, e.g. a reduced-resolution region while animating).
+  void set_linear_filtering(bool linear);
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }
@@ -43,6 +46,7 @@ class CellFramebuffer {
   int width_ = 0;
   int height_ = 0;
   int samples_ = 0;
+  bool linear_ = false;
   Framebuffer draw_fbo_;  // multisampled (only when samples_ > 0)
   Renderbuffer colour_ms_;
   Renderbuffer depth_;         // multisampled when samples_ > 0
