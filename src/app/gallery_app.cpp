@@ -76,7 +76,7 @@ struct BodyView {
   // Renders into the framebuffer if the body, the camera or the size changed. `fast` (while
   // animating) draws a `scale`d region without multisampling unless `fast_multisample`; the
   // settled image is drawn again at full quality.
-  bool draw(const render::BodyRenderer& renderer, const render::Camera& camera, int camera_version,
+  bool draw(render::BodyRenderer& renderer, const render::Camera& camera, int camera_version,
             int width, int height, int samples, const render::BodyStyle& style, bool fast = false,
             float scale = 1.0f, bool fast_multisample = false) {
     width = std::max(width, 16);

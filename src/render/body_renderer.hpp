@@ -27,14 +27,23 @@ class BodyRenderer {
 
   // Renders into whatever framebuffer is bound, over the viewport `width` x `height`.
   // An empty mesh draws only the backdrop.
+  // Not const: it caches the backdrop image per size.
   void draw(const MeshGpu& mesh, const Camera& camera, int width, int height,
-            const BodyStyle& style = {}) const;
+            const BodyStyle& style = {});
 
  private:
+  void draw_backdrop(const BodyStyle& style) const;
+
   Program body_;
   Program background_;
   Program shadow_;
   VertexArray empty_vao_;  // core profile needs a bound VAO even for attribute-less draws
+  Framebuffer backdrop_fbo_;
+  Texture backdrop_texture_;
+  int backdrop_width_ = 0;
+  int backdrop_height_ = 0;
+  glm::vec3 backdrop_top_{-1.0f};
+  glm::vec3 backdrop_bottom_{-1.0f};
 };
 
 }  // namespace render

@@ -118,6 +118,27 @@ TEST_CASE("back-face culling follows the mesh's winding", "[render]") {
   CHECK(distance(centres[0], centres[1]) <= 3);
 }
 
+TEST_CASE("the cached backdrop matches the drawn one", "[render]") {
+  context();
+  render::BodyRenderer renderer;
+  render::Camera camera;
+  render::MeshGpu none;
+  render::CellFramebuffer single(64, 64, 0), multi(64, 64, 4);
+  for (int pass = 0; pass < 2; ++pass) {  // the second single-sampled pass uses the cache
+    single.begin();
+    renderer.draw(none, camera, 64, 64);
+    single.end();
+  }
+  multi.begin();
+  renderer.draw(none, camera, 64, 64);
+  multi.end();
+  const auto a = single.read_pixels();
+  const auto b = multi.read_pixels();
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{0, 0}, {32, 32}, {63, 63}, {5, 50}}) {
+    CHECK(distance(pixel(a, 64, x, y), pixel(b, 64, x, y)) <= 3);
+  }
+}
+
 TEST_CASE("framebuffers resize and work without multisampling", "[render]") {
   context();
   render::CellFramebuffer fbo(64, 48, 0);
