@@ -39,7 +39,8 @@ void BodyRenderer::draw(const MeshGpu& mesh, const Camera& camera, int width, in
   glDisable(GL_CULL_FACE);
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  glClearStencil(0);
+  glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);  // packed D24S8: one memset
 
   // Backdrop: into a single-sampled target it is copied from a cached image (a plain memory
   // copy for a software rasterizer), otherwise drawn.
