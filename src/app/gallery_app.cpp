@@ -32,6 +32,12 @@ namespace app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Preview and history thumbnail sizes (pixels; shown 1:1). Wide enough for an A-pose.
+constexpr int kPreviewW = 260;
+constexpr int kPreviewH = 320;
+constexpr int kThumbW = 58;
+constexpr int kThumbH = 72;
 namespace fs = std::filesystem;
 
 double seconds_since(Clock::time_point t) {
@@ -631,15 +637,18 @@ void GalleryApp::render_cells() {
               style, fast, options_.animation_scale, options_.animation_samples > 0);
   }
   render::BodyStyle preview = style;
-  best_view_.draw(*renderer_, camera_, camera_version_, 200, 300, options_.samples, preview);
+  best_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
+                  preview);
   if (inspected_ >= 0) {
-    inspect_view_.draw(*renderer_, camera_, camera_version_, 200, 300, options_.samples, preview);
+    inspect_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
+                       preview);
   }
   preview.albedo = {0.62f, 0.66f, 0.72f};
-  start_view_.draw(*renderer_, camera_, camera_version_, 200, 300, options_.samples, preview);
+  start_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
+                   preview);
   render::BodyStyle thumb = style;
   for (auto& h : history_views_) {
-    h.draw(*renderer_, camera_, camera_version_, 48, 72, options_.samples, thumb);
+    h.draw(*renderer_, camera_, camera_version_, kThumbW, kThumbH, options_.samples, thumb);
   }
 }
 
@@ -784,9 +793,9 @@ void GalleryApp::draw_side_panel() {
   } else {
     std::snprintf(title, sizeof title, "Current best");
   }
-  draw_preview(title, shown, 200, 300);
+  draw_preview(title, shown, kPreviewW, kPreviewH);
   ImGui::SameLine();
-  draw_preview("Started from", start_view_, 200, 300);
+  draw_preview("Started from", start_view_, kPreviewW, kPreviewH);
   if (inspected_ >= 0) {
     if (ImGui::Button("Back to current best")) inspected_ = -1;
   }
@@ -824,7 +833,7 @@ void GalleryApp::draw_side_panel() {
     ImGui::BeginGroup();
     const bool selected = inspected_ == static_cast<int>(i);
     if (selected) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(255, 170, 40, 255));
-    if (ImGui::ImageButton(texture_id(history_views_[i].fbo.texture()), ImVec2(48, 72),
+    if (ImGui::ImageButton(texture_id(history_views_[i].fbo.texture()), ImVec2(kThumbW, kThumbH),
                            ImVec2(0, 1), ImVec2(1, 0), 2)) {
       inspected_ = selected ? -1 : static_cast<int>(i);
     }
@@ -961,7 +970,7 @@ void GalleryApp::draw_ui() {
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
                    ImGuiWindowFlags_NoBackground);  // glClear paints it, far cheaper
-  const float side_width = 430.0f;
+  const float side_width = 2.0f * kPreviewW + 24.0f;
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float toolbar_height = ImGui::GetFrameHeightWithSpacing();
   const int n = session_->settings().grid_size;

@@ -47,7 +47,7 @@ int run(int argc, char** argv) {
   o.benchmark_breakdown = args.has("breakdown");
   if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");
   const int grid_px = o.grid_size * o.cell_size + (o.grid_size - 1) * 6;
-  o.window_width = grid_px + 16 + 440;
+  o.window_width = grid_px + 16 + 548;
   o.window_height = grid_px + 50;
   o.resume = app::GalleryOptions::Resume::kNo;
   o.session_path = std::filesystem::temp_directory_path() /
