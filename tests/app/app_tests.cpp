@@ -161,6 +161,18 @@ TEST_CASE("session JSON round trip reproduces state and the next plane", "[app]"
   CHECK((back.search().current_plane().u - session.search().current_plane().u).norm() < 1e-12);
 }
 
+TEST_CASE("a session killed while the optimizer ran resumes with the choice pending", "[app]") {
+  app::Session session(small_settings());
+  for (const auto& c : std::vector<sps::GridCell>{{0, 1}, {2, 2}, {1, 0}, {0, 0}}) session.click(c);
+  REQUIRE(session.submission_pending());
+  const app::Session back = app::Session::from_json(session.to_json());
+  CHECK(back.submission_pending());
+  const auto a = session.submission();
+  const auto b = back.submission();
+  CHECK((a.chosen - b.chosen).norm() < 1e-12);
+  CHECK(a.extra_comparisons.size() == b.extra_comparisons.size());
+}
+
 TEST_CASE("autosave writes atomically and loads back", "[app]") {
   TempDir dir;
   const fs::path file = dir.path / "nested" / "session.json";
