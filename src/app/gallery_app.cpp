@@ -172,6 +172,7 @@ class GalleryApp {
   // Per frame.
   void update_grid_bodies();
   void render_cells();
+  int px(int logical) const;  // logical UI size -> framebuffer pixels
   void draw_ui();
   void draw_toolbar();
   void draw_grid(float size);
@@ -627,6 +628,11 @@ void GalleryApp::update_grid_bodies() {
   }
 }
 
+int GalleryApp::px(int logical) const {
+  const float dpi = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
+  return static_cast<int>(std::lround(dpi * static_cast<float>(logical)));
+}
+
 void GalleryApp::render_cells() {
   const render::BodyStyle style = cell_style();
   // While bodies morph, cells render without multisampling (llvmpipe pays 4x per sample);
@@ -637,18 +643,18 @@ void GalleryApp::render_cells() {
               style, fast, options_.animation_scale, options_.animation_samples > 0);
   }
   render::BodyStyle preview = style;
-  best_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
-                  preview);
+  best_view_.draw(*renderer_, camera_, camera_version_, px(kPreviewW), px(kPreviewH),
+                  options_.samples, preview);
   if (inspected_ >= 0) {
-    inspect_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
-                       preview);
+    inspect_view_.draw(*renderer_, camera_, camera_version_, px(kPreviewW), px(kPreviewH),
+                       options_.samples, preview);
   }
   preview.albedo = {0.62f, 0.66f, 0.72f};
-  start_view_.draw(*renderer_, camera_, camera_version_, kPreviewW, kPreviewH, options_.samples,
-                   preview);
+  start_view_.draw(*renderer_, camera_, camera_version_, px(kPreviewW), px(kPreviewH),
+                   options_.samples, preview);
   render::BodyStyle thumb = style;
   for (auto& h : history_views_) {
-    h.draw(*renderer_, camera_, camera_version_, kThumbW, kThumbH, options_.samples, thumb);
+    h.draw(*renderer_, camera_, camera_version_, px(kThumbW), px(kThumbH), options_.samples, thumb);
   }
 }
 
@@ -707,7 +713,11 @@ void GalleryApp::draw_grid(float size) {
   const int n = session_->settings().grid_size;
   const float gap = 6.0f;
   const float cell = std::floor((size - gap * static_cast<float>(n - 1)) / static_cast<float>(n));
-  cell_pixels_ = options_.cell_size > 0 ? options_.cell_size : std::max(32, static_cast<int>(cell));
+  // Framebuffers are sized in physical pixels so cells stay sharp on high-DPI screens.
+  const float dpi = std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
+  cell_pixels_ = static_cast<int>(
+      std::lround(dpi * (options_.cell_size > 0 ? static_cast<float>(options_.cell_size)
+                                                : std::max(32.0f, cell))));
   const float shown = options_.cell_size > 0 ? static_cast<float>(options_.cell_size) : cell;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
