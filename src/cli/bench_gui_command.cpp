@@ -1,6 +1,6 @@
 // `bench-gui`: frame times of the viewer's grid during zoom animations (3x3 cells of 400x400
 // px by default) and launch-to-first-grid time. Needs a display: run it under
-// `xvfb-run -a -s "-screen 0 1800x1400x24"` on a machine without one.
+// `xvfb-run -a -s "-screen 0 1900x1400x24"` on a machine without one.
 #include <unistd.h>
 #include <filesystem>
 #include <iostream>
@@ -19,7 +19,7 @@ const char* const kUsage =
     "Opens the viewer, clicks N cells automatically (default 12, i.e. 3 planes), and prints\n"
     "median / 95th percentile frame times of the zoom animations and the launch-to-first-grid\n"
     "time. Uses a throw-away session file. Example without a display:\n"
-    "  xvfb-run -a -s \"-screen 0 1800x1400x24\" sequential-gallery bench-gui\n";
+    "  xvfb-run -a -s \"-screen 0 1900x1400x24\" sequential-gallery bench-gui\n";
 
 int run(int argc, char** argv) {
   const auto launch = std::chrono::steady_clock::now();
