@@ -556,7 +556,8 @@ void GalleryApp::save_gltf() {
 void GalleryApp::poll_worker() {
   if (session_->submission_pending() && !worker_.busy() && submitted_generation_ != generation_ &&
       !pending_resume_) {
-    worker_.start(session_->search(), session_->submission(), generation_);
+    worker_.start(session_->search(), session_->submission(), generation_,
+                  std::chrono::milliseconds(options_.optimizer_delay_ms));
     submitted_generation_ = generation_;
   }
   auto result = worker_.poll();

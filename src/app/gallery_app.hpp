@@ -34,7 +34,9 @@ struct GalleryOptions {
   std::filesystem::path screenshot_path;  // F12 writes it; see screenshot_after_frames
   int screenshot_after_frames = -1;       // >= 0: write the screenshot after that many frames
   bool quit_after_screenshot = false;
-  bool report_layout = false;  // print the grid cells' window rectangles (for scripted tests)
+  bool report_layout = false;
+  int optimizer_delay_ms = 0;  // testing: hold each submission back this long  // print the grid
+                               // cells' window rectangles (for scripted tests)
 
   // Benchmark: click automatically through `benchmark_clicks` cells, measure frame times
   // during the zoom animations and the launch-to-first-grid time, print them and exit.

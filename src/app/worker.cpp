@@ -1,26 +1,30 @@
 #include "app/worker.hpp"
 
 #include <exception>
+#include <thread>
 
 namespace app {
 
-bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, int generation) {
+bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, int generation,
+                         std::chrono::milliseconds delay) {
   if (job_.valid()) return false;
-  job_ = std::async(std::launch::async, [search = sps::PlaneSearch(search),
-                                         submission = std::move(submission), generation]() mutable {
-    Result result;
-    result.generation = generation;
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      search.submit(submission.chosen, submission.extra_comparisons);
-      result.search = std::move(search);
-    } catch (const std::exception& e) {
-      result.error = e.what();
-    }
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  });
+  job_ = std::async(
+      std::launch::async, [search = sps::PlaneSearch(search), submission = std::move(submission),
+                           generation, delay]() mutable {
+        Result result;
+        result.generation = generation;
+        const auto start = std::chrono::steady_clock::now();
+        if (delay.count() > 0) std::this_thread::sleep_for(delay);
+        try {
+          search.submit(submission.chosen, submission.extra_comparisons);
+          result.search = std::move(search);
+        } catch (const std::exception& e) {
+          result.error = e.what();
+        }
+        result.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return result;
+      });
   return true;
 }
 

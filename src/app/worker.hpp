@@ -23,7 +23,9 @@ class SubmitWorker {
   };
 
   // Starts computing; only one job at a time (returns false if one is running).
-  bool start(const sps::PlaneSearch& search, Submission submission, int generation);
+  // `delay` (testing only) holds the job back, to show that the UI stays live meanwhile.
+  bool start(const sps::PlaneSearch& search, Submission submission, int generation,
+             std::chrono::milliseconds delay = std::chrono::milliseconds(0));
   bool busy() const { return job_.valid(); }
   // The finished result, once; nullopt while running or idle.
   std::optional<Result> poll();

@@ -1,4 +1,5 @@
 // `gallery` (the default command): the Sequential Gallery window.
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -30,6 +31,7 @@ const char* const kUsage =
     "  --screenshot FILE.png   F12 writes a screenshot of the window there\n"
     "  --screenshot-after-frames N   write it after N frames (with --quit-after-screenshot)\n"
     "  --report-layout         print each grid cell's window position and size (for tests)\n"
+    "  --optimizer-delay-ms MS (testing) hold each optimizer run back, to see the UI stay live\n"
     "  --benchmark-clicks N    click N cells automatically, print frame-time statistics of the\n"
     "                          zoom animations and launch-to-first-grid time, then exit\n";
 
@@ -60,7 +62,8 @@ int run(int argc, char** argv) {
                        "screenshot-after-frames",
                        "quit-after-screenshot",
                        "benchmark-clicks",
-                       "report-layout"});
+                       "report-layout",
+                       "optimizer-delay-ms"});
   app::GalleryOptions o;
   o.launch_time = launch;
   if (const auto m = args.get("model")) o.model_path = *m;
@@ -109,6 +112,7 @@ int run(int argc, char** argv) {
   o.quit_after_screenshot = args.has("quit-after-screenshot");
   o.benchmark_clicks = args.get_int("benchmark-clicks", 0);
   o.report_layout = args.has("report-layout");
+  o.optimizer_delay_ms = std::max(0, args.get_int("optimizer-delay-ms", 0));
   if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::GalleryOptions::Resume::kNo;
   return app::run_gallery(o);
 }

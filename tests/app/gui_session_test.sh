@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Scripted session in a real window (run under xvfb-run): real mouse clicks with xdotool on the
-# grid cells, two finished planes, Backspace undo, Ctrl+S glTF save, a kill -9 mid-session and
-# a resume that finds every click. Usage: gui_session_test.sh /path/to/sequential-gallery
+# grid cells, two finished planes, a live window while the optimizer runs, Backspace undo,
+# Ctrl+S glTF save, a kill -9 mid-session and a resume that finds every click.
+# Usage: gui_session_test.sh /path/to/sequential-gallery
 set -euo pipefail
 APP=$1
 T=$(mktemp -d)
@@ -58,8 +59,8 @@ click_cell() {
 clicks_on_plane() { [[ "$(session_field 'len(s["path"])')" == "$1" ]]; }
 planes_done() { [[ "$(session_field 'len(s["history"])')" == "$1" ]]; }
 
-echo "== launch"
-launch --resume no
+echo "== launch (the optimizer is held back 4 s per plane to prove the window stays live)"
+launch --resume no --optimizer-delay-ms 4000 --screenshot "$T/busy.png"
 
 echo "== click, then Backspace undoes it"
 click_cell 5
@@ -69,6 +70,10 @@ wait_for 5 clicks_on_plane 0 || fail "Backspace did not undo the click"
 
 echo "== plane 1: four real clicks"
 for c in 1 6 8 3; do click_cell "$c"; done
+echo "== while the optimizer runs, the window still answers (F12 screenshot)"
+xdotool key F12
+wait_for 3 test -s "$T/busy.png" || fail "no screenshot while the optimizer ran: UI blocked?"
+planes_done 0 || fail "plane finished too early for the liveness check"
 wait_for 60 planes_done 1 || fail "plane 1 not submitted (history $(session_field 'len(s["history"])'))"
 wait_for 10 clicks_on_plane 0 || fail "plane 2 did not start"
 
