@@ -47,7 +47,7 @@ options:
   --per-trial-csv F   write every trial's gap and optimizer seconds per iteration
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
-  --noise-variance B, --plane-restarts N, --ei-starts N
+  --noise-variance B, --plane-restarts N, --ei-starts N, --representatives 5|9
   --quiet             no progress on stderr
 
 functions:
@@ -93,7 +93,8 @@ int run(int argc, char** argv) {
                        "btl-scale",
                        "noise-variance",
                        "plane-restarts",
-                       "ei-starts"});
+                       "ei-starts",
+                       "representatives"});
   const std::string function = args.get_or("function", "gaussian");
   const int dims = args.get_int("dims", 5);
   const double optimum = args.get_double("optimum", std::numeric_limits<double>::quiet_NaN());
@@ -123,6 +124,7 @@ int run(int argc, char** argv) {
   options.model.noise_variance = args.get_double("noise-variance", options.model.noise_variance);
   options.plane_restarts = args.get_int("plane-restarts", options.plane_restarts);
   options.ei_restarts = args.get_int("ei-starts", options.ei_restarts);
+  options.representatives = args.get_int("representatives", options.representatives);
   if (!(options.model.amplitude_prior > 0 && options.model.length_scale_prior > 0 &&
         options.model.prior_log_variance > 0 && options.model.btl_scale > 0 &&
         options.model.noise_variance > 0)) {

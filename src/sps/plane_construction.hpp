@@ -31,7 +31,7 @@ double plane_acquisition(const PreferenceModel& model, const Plane& plane, doubl
 
 struct PlaneSearchSettings {
   int restarts = 10;
-  int max_iterations = 50;
+  int max_iterations = 25;
   int threads = 2;
 };
 

@@ -136,6 +136,12 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
     representatives.push_back(plane_.c - plane_.u_neg_scale * plane_.u);
     representatives.push_back(plane_.c + plane_.v);
     representatives.push_back(plane_.c - plane_.v);
+    if (options_.representatives >= 9) {
+      for (double s : {-1.0, 1.0}) {
+        representatives.push_back(plane_.point(s, 0.0).cwiseMax(0.0).cwiseMin(1.0));
+        representatives.push_back(plane_.point(0.0, s).cwiseMax(0.0).cwiseMin(1.0));
+      }
+    }
   }
   data_.add_preference(x, representatives);
   for (const auto& comparison : extra_comparisons) {
@@ -233,6 +239,7 @@ std::string PlaneSearch::to_json() const {
                   {"plane_restarts", options_.plane_restarts},
                   {"ei_restarts", options_.ei_restarts},
                   {"threads", options_.threads},
+                  {"representatives", options_.representatives},
                   {"model",
                    {{"amplitude_prior", m.amplitude_prior},
                     {"length_scale_prior", m.length_scale_prior},
@@ -290,6 +297,7 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     options.plane_restarts = o.at("plane_restarts").get<int>();
     options.ei_restarts = o.at("ei_restarts").get<int>();
     options.threads = o.at("threads").get<int>();
+    options.representatives = o.value("representatives", 5);
     const json& m = o.at("model");
     options.model.amplitude_prior = m.at("amplitude_prior").get<double>();
     options.model.length_scale_prior = m.at("length_scale_prior").get<double>();

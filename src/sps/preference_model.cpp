@@ -256,28 +256,16 @@ double PreferenceModel::variance(const Eigen::VectorXd& x) const {
 
 void PreferenceModel::predict(const Eigen::VectorXd& x, double& mean, double& variance,
                               Eigen::VectorXd* d_mean, Eigen::VectorXd* d_variance) const {
-  if (points_.cols() == 0) {
-    mean = 0.0;
-    variance = kernel_.variance();
-    if (d_mean != nullptr) d_mean->setZero(x.size());
-    if (d_variance != nullptr) d_variance->setZero(x.size());
-    return;
-  }
-  Eigen::VectorXd k;
-  Eigen::MatrixXd dk;
-  kernel_.cross_with_gradient(points_, x, k, dk);
-  const Eigen::VectorXd c_inv_k = c_inv_ * k;
-  mean = k.dot(alpha_);
-  const double raw_variance = kernel_.variance() - k.dot(c_inv_k);
-  variance = std::max(0.0, raw_variance);
-  if (d_mean != nullptr) *d_mean = dk * alpha_;
-  if (d_variance != nullptr) {
-    if (raw_variance > 0.0) {
-      *d_variance = -2.0 * dk * c_inv_k;
-    } else {
-      d_variance->setZero(x.size());
-    }
-  }
+  Eigen::VectorXd means;
+  Eigen::VectorXd variances;
+  Eigen::MatrixXd d_means;
+  Eigen::MatrixXd d_variances;
+  predict_batch(x, means, variances, d_mean != nullptr ? &d_means : nullptr,
+                d_variance != nullptr ? &d_variances : nullptr);
+  mean = means(0);
+  variance = variances(0);
+  if (d_mean != nullptr) *d_mean = d_means.col(0);
+  if (d_variance != nullptr) *d_variance = d_variances.col(0);
 }
 
 void PreferenceModel::predict_batch(const Eigen::MatrixXd& xs, Eigen::VectorXd& mean,
