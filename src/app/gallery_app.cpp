@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/body_scene.hpp"
+#include "app/body_view.hpp"
 #include "app/session.hpp"
 #include "app/session_store.hpp"
 #include "app/worker.hpp"
@@ -51,73 +52,6 @@ void disable_blending(const ImDrawList* /*list*/, const ImDrawCmd* /*cmd*/) {
 ImTextureID texture_id(GLuint texture) {
   return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture));
 }
-
-// One rendered body: its GPU mesh, its offscreen framebuffer and what it last showed.
-struct BodyView {
-  render::MeshGpu mesh;
-  render::CellFramebuffer fbo;
-  Eigen::VectorXd x;
-  bool clamped = false;
-  bool dirty = true;
-  int drawn_camera = -1;
-  std::optional<body::Measurements> measurements;
-
-  // Re-evaluates the body if x changed. Returns true if it did.
-  bool set_body(const body::Model& model, const Eigen::VectorXd& point, bool want_measurements) {
-    if (x.size() == point.size() && (x - point).cwiseAbs().maxCoeff() < 1e-12 && !mesh.empty()) {
-      if (want_measurements && !measurements) {
-        measurements = body::measure(model, body_at(model, x));
-      }
-      return false;
-    }
-    x = point;
-    const body::BodyMesh m = body_at(model, x);
-    show_mesh(mesh, model, m);
-    measurements.reset();
-    if (want_measurements) measurements = body::measure(model, m);
-    dirty = true;
-    return true;
-  }
-
-  // Renders into the framebuffer if the body, the camera or the size changed. `fast` (while
-  // animating) draws a `scale`d region without multisampling unless `fast_multisample`; the
-  // settled image is drawn again at full quality.
-  bool draw(render::BodyRenderer& renderer, const render::Camera& camera, int camera_version,
-            int width, int height, int samples, const render::BodyStyle& style, bool fast = false,
-            float scale = 1.0f, bool fast_multisample = false) {
-    width = std::max(width, 16);
-    height = std::max(height, 16);
-    if (fbo.width() != width || fbo.height() != height || fbo.samples() != samples ||
-        fbo.texture() == 0) {
-      fbo.resize(width, height, samples);
-      dirty = true;
-    }
-    if (!dirty && drawn_camera == camera_version && !(drawn_fast && !fast)) return false;
-    const float s = fast ? std::clamp(scale, 0.25f, 1.0f) : 1.0f;
-    region_w = std::max(16, static_cast<int>(std::lround(static_cast<float>(width) * s)));
-    region_h = std::max(16, static_cast<int>(std::lround(static_cast<float>(height) * s)));
-    const bool multisample = !fast || fast_multisample;
-    fbo.set_linear_filtering(region_w != width || region_h != height);
-    fbo.begin(region_w, region_h, multisample);
-    renderer.draw(mesh, camera, region_w, region_h, style);
-    fbo.end(region_w, region_h, multisample);
-    dirty = false;
-    drawn_fast = fast;
-    drawn_camera = camera_version;
-    return true;
-  }
-
-  void uv(ImVec2& uv0, ImVec2& uv1) const {
-    float a[2], b[2];
-    fbo.region_uv(region_w, region_h, a, b);
-    uv0 = ImVec2(a[0], a[1]);
-    uv1 = ImVec2(b[0], b[1]);
-  }
-
-  int region_w = 0;
-  int region_h = 0;
-  bool drawn_fast = false;
-};
 
 std::string format_metres(double m) {
   char text[32];
@@ -750,8 +684,8 @@ void GalleryApp::draw_grid(float size) {
       }
       if (static_cast<size_t>(index) < cells_.size()) {
         const BodyView& view = cells_[static_cast<size_t>(index)];
-        ImVec2 uv0, uv1;
-        view.uv(uv0, uv1);
+        const auto uv = view.uv();
+        const ImVec2 uv0(uv[0], uv[1]), uv1(uv[2], uv[3]);
         // Cells are opaque: drawing them without blending saves a software rasterizer
         // reading back 9 x 400 x 400 pixels every frame.
         dl->AddCallback(&disable_blending, nullptr);
