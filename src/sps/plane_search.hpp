@@ -36,9 +36,10 @@ struct SearchOptions {
   int plane_restarts = 10;  // random restarts for v (paper: 10)
   int ei_restarts = 0;      // multi-start count for x_EI; 0 = automatic
   int threads = 2;          // restarts run in parallel
-  // Points of the plane the choice is preferred over: 5 is the paper's c, c+-u, c+-v; 9 adds
-  // the four edge midpoints (the coarsest 3x3 grid).
-  int representatives = 5;
+  // Points of the plane the choice is preferred over: 5 is the paper's c, c+-u, c+-v; 9 (the
+  // default) adds the four edge midpoints, i.e. the coarsest 3x3 grid: more information per
+  // plane for little cost (docs/benchmarks.md).
+  int representatives = 9;
   ModelSettings model;  // priors and likelihood of the preference model
 };
 
