@@ -140,15 +140,18 @@ def main():
         ref_pt = read_per_trial(os.path.join(ref_dir, "per-trial", "%s_sps_per-trial.csv" % s), "gap_best_so_far")
         ps = [mann_whitney_less(ours_pt[i], ref_pt[i]) for i in (10, 15, 25)]
         ok = all(x <= 1.0 for x in ratios)
-        better = ok and all(x < 0.75 for x in ratios) and sum(1 for q in ps if q < 0.05) >= 2
+        marks = [r <= 0.75 and q < 0.01 for r, q in zip(ratios, ps)]
+        better = ok and sum(marks) >= 2
         clearly += better
         all_ok &= ok
         p("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            s, *["%.2f" % x for x in ratios], *["%.3g" % q for q in ps],
-            "yes" if ok else "**no**", "yes" if better else "no"))
+            s, *["%.2f%s" % (x, "*" if m else "") for x, m in zip(ratios, marks)],
+            *["%.3g" % q for q in ps], "yes" if ok else "**no**", "yes" if better else "no"))
     p()
-    p("\"Clearly better\": mean gap below 0.75x the reference at all three iterations and p < 0.05")
-    p("at two of them. Result: no worse in all four: **%s**; clearly better in %d of 4: **%s**." % (
+    p("\"Clearly better\" at a checkpoint (marked *): mean gap at most 0.75x the reference's and")
+    p("p < 0.01; in a setting: at two of the three checkpoints. A much lower mean with a")
+    p("non-significant rank test (a few bad reference trials inflating its mean) does not count.")
+    p("Result: no worse in all four: **%s**; clearly better in %d of 4: **%s**." % (
         "yes" if all_ok else "no", clearly, "yes" if clearly >= 2 else "no"))
     p()
     o20 = ours.get(("rosenbrock-20d", "sps", "argmax"))

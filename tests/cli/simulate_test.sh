@@ -15,6 +15,11 @@ echo "$out"
 [ "$(wc -l < "$dir/t.csv")" = 7 ] || fail "CSV should have a header and 6 rows"
 [ "$(wc -l < "$dir/p.csv")" = 13 ] || fail "per-trial CSV should have a header and 12 rows"
 head -1 "$dir/t.csv" | grep -q "^iteration,mean_gap,sd_gap,median_gap" || fail "CSV header"
+# Every row has as many fields as the header, and the per-trial seconds average to the mean.
+awk -F, 'NR==1 { n=NF } NF != n { exit 1 }' "$dir/t.csv" || fail "CSV rows do not match the header"
+awk -F, 'NR==FNR { if (FNR>1 && $3==6) { s+=$5; c++ } next }
+         FNR==7 { m=$5; exit (m - s/c > 1e-12 || s/c - m > 1e-12) }' "$dir/p.csv" "$dir/t.csv" \
+  || fail "mean optimizer seconds disagree with the per-trial file"
 # The gap never grows (best so far) and ends below where it started.
 awk -F, 'NR>1 { if (NR>2 && $2 > prev + 1e-15) bad=1; if (NR==2) first=$2; prev=$2 }
          END { exit (bad || !(prev < first)) }' "$dir/t.csv" || fail "gap did not decrease"
