@@ -246,7 +246,8 @@ std::string PlaneSearch::to_json() const {
                     {"prior_log_variance", m.prior_log_variance},
                     {"btl_scale", m.btl_scale},
                     {"noise_variance", m.noise_variance},
-                    {"max_hyper_iterations", m.max_hyper_iterations}}}};
+                    {"max_hyper_iterations", m.max_hyper_iterations},
+                    {"max_points", m.max_points}}}};
   j["rng"] = rng_state();
   json points = json::array();
   for (Eigen::Index i = 0; i < data_.points().cols(); ++i) {
@@ -305,6 +306,8 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     options.model.btl_scale = m.at("btl_scale").get<double>();
     options.model.noise_variance = m.at("noise_variance").get<double>();
     options.model.max_hyper_iterations = m.at("max_hyper_iterations").get<int>();
+    options.model.max_points = m.value("max_points", options.model.max_points);
+    if (options.model.max_points < 2) throw std::runtime_error("max_points must be at least 2");
 
     PlaneSearch search(options);
     const int d = options.dims;
@@ -318,7 +321,15 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     const int n = search.data_.point_count();
     search.set_rng_state(j.at("rng").get<std::string>());
     const KernelParams params = params_from_json(j.at("params"), d);
-    const Eigen::VectorXd latent = vec_from_json(j.at("latent"), "latent", n);
+    // The model holds latent values for the points of its window (all points in a short
+    // session, the newest ones in a long one).
+    const auto window_points = [&](int points, int preferences) {
+      PreferenceData prefix = search.data_;
+      prefix.truncate(points, preferences);
+      return static_cast<Eigen::Index>(model_window(prefix, options.model).point_count());
+    };
+    const Eigen::VectorXd latent =
+        vec_from_json(j.at("latent"), "latent", window_points(n, search.data_.preference_count()));
     search.model_ =
         n == 0 ? std::make_shared<PreferenceModel>(d, options.model)
                : std::make_shared<PreferenceModel>(search.data_, options.model, params, latent);
@@ -333,7 +344,8 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
         throw std::runtime_error("history refers to data that does not exist");
       }
       s.params = params_from_json(h.at("params"), d);
-      s.latent = vec_from_json(h.at("latent"), "history latent", s.points);
+      s.latent =
+          vec_from_json(h.at("latent"), "history latent", window_points(s.points, s.preferences));
       s.rng_state = h.at("rng").get<std::string>();
       search.history_.push_back(std::move(s));
     }

@@ -80,6 +80,32 @@ TEST_CASE("JSON round trip is exact and the restored search proposes the same pl
   }
 }
 
+TEST_CASE("JSON round trip of a long session whose model uses a window of the data",
+          "[search][json]") {
+  const auto g = sps::make_test_function("gaussian", 4);
+  sps::SearchOptions o = options(4, 9);
+  o.model.max_points = 24;  // small, so that a few planes already slide the window
+  sps::PlaneSearch original(o);
+  for (int i = 0; i < 8; ++i) {
+    const auto answer = sps::zoom_user(*g, original.current_plane());
+    original.submit(answer.chosen, answer.comparisons);
+  }
+  REQUIRE(original.data().point_count() > 24);
+  REQUIRE(original.model().point_count() <= 24);
+  const std::string text = original.to_json();
+  sps::PlaneSearch restored = sps::PlaneSearch::from_json(text);
+  CHECK(restored.to_json() == text);
+  const auto answer = sps::zoom_user(*g, original.current_plane());
+  original.submit(answer.chosen, answer.comparisons);
+  restored.submit(answer.chosen, answer.comparisons);
+  CHECK(same_plane(original.current_plane(), restored.current_plane()));
+  for (int i = 0; i < 3; ++i) {
+    REQUIRE(restored.undo());
+    REQUIRE(original.undo());
+    CHECK(same_plane(original.current_plane(), restored.current_plane()));
+  }
+}
+
 TEST_CASE("corrupt state text is reported, not crashed on", "[search][json]") {
   CHECK_THROWS_AS(sps::PlaneSearch::from_json("{not json"), std::runtime_error);
   CHECK_THROWS_AS(sps::PlaneSearch::from_json("{}"), std::runtime_error);
