@@ -25,28 +25,11 @@ double normal_cdf(double z) {
 
 double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd& x,
                             double best_mean, Eigen::VectorXd* gradient) {
-  double mean = 0.0;
-  double variance = 0.0;
-  Eigen::VectorXd d_mean;
-  Eigen::VectorXd d_variance;
-  model.predict(x, mean, variance, gradient != nullptr ? &d_mean : nullptr,
-                gradient != nullptr ? &d_variance : nullptr);
-  const double sigma = std::sqrt(variance);
-  const double diff = mean - best_mean;
-  if (sigma < 1e-12) {
-    if (gradient != nullptr) {
-      *gradient = diff > 0.0 ? d_mean : Eigen::VectorXd::Zero(x.size());
-    }
-    return std::max(diff, 0.0);
-  }
-  const double z = diff / sigma;
-  const double cdf = normal_cdf(z);
-  const double pdf = normal_pdf(z);
-  if (gradient != nullptr) {
-    // dEI/dmu = Phi(z), dEI/dsigma = phi(z), dsigma/dx = dvar/dx / (2 sigma).
-    *gradient = cdf * d_mean + (pdf / (2.0 * sigma)) * d_variance;
-  }
-  return diff * cdf + sigma * pdf;
+  Eigen::MatrixXd grad;
+  const Eigen::VectorXd ei =
+      expected_improvement_batch(model, x, best_mean, gradient != nullptr ? &grad : nullptr);
+  if (gradient != nullptr) *gradient = grad.col(0);
+  return ei(0);
 }
 
 Eigen::VectorXd expected_improvement_batch(const PreferenceModel& model, const Eigen::MatrixXd& xs,

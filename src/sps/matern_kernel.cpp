@@ -44,13 +44,6 @@ double MaternKernel::operator()(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return variance() * matern52(std::sqrt(r2));
 }
 
-Eigen::VectorXd MaternKernel::gradient_x(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
-  const Eigen::ArrayXd diff = (x - y).array();
-  const double r = std::sqrt((diff.square() * inv_sq_lengths_.array()).sum());
-  // dk/dx_k = a^2 * (dm/dr) * (x_k - y_k) / (l_k^2 r)
-  return (variance() * matern52_dr_over_r(r) * diff * inv_sq_lengths_.array()).matrix();
-}
-
 Eigen::MatrixXd MaternKernel::gram(const Eigen::MatrixXd& points) const {
   const Eigen::Index n = points.cols();
   Eigen::MatrixXd k(n, n);
@@ -75,22 +68,6 @@ Eigen::VectorXd MaternKernel::cross(const Eigen::MatrixXd& points, const Eigen::
     k(i) = var * matern52(std::sqrt(r2));
   }
   return k;
-}
-
-void MaternKernel::cross_with_gradient(const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
-                                       Eigen::VectorXd& k, Eigen::MatrixXd& dk_dx) const {
-  const Eigen::Index n = points.cols();
-  k.resize(n);
-  dk_dx.resize(x.size(), n);
-  const double var = variance();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::ArrayXd diff = x.array() - points.col(i).array();
-    const Eigen::ArrayXd scaled = diff * inv_sq_lengths_.array();
-    const double r = std::sqrt((diff * scaled).sum());
-    const double e = std::exp(-kSqrt5 * r);
-    k(i) = var * (1.0 + kSqrt5 * r + (5.0 / 3.0) * r * r) * e;
-    dk_dx.col(i) = (var * -(5.0 / 3.0) * (1.0 + kSqrt5 * r) * e * scaled).matrix();
-  }
 }
 
 void MaternKernel::cross_batch(const Eigen::MatrixXd& points, const Eigen::MatrixXd& xs,

@@ -26,15 +26,11 @@ class MaternKernel {
   double variance() const { return params_.amplitude * params_.amplitude; }
 
   double operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
-  // d k(x, y) / d x.
-  Eigen::VectorXd gradient_x(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
 
   // Gram matrix of the columns of `points` (d x N).
   Eigen::MatrixXd gram(const Eigen::MatrixXd& points) const;
-  // Cross-covariances k(points_i, x) (N) and their gradients w.r.t. x (d x N).
+  // Cross-covariances k(points_i, x) (N).
   Eigen::VectorXd cross(const Eigen::MatrixXd& points, const Eigen::VectorXd& x) const;
-  void cross_with_gradient(const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
-                           Eigen::VectorXd& k, Eigen::MatrixXd& dk_dx) const;
 
   // For many query points at once (columns of `xs`): k(i, j) = k(points_i, xs_j) and the
   // factor q(i, j) with d k(points_i, x) / dx at xs_j = q(i, j) * (xs_j - points_i) / l^2.

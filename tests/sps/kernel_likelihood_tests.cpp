@@ -37,24 +37,32 @@ TEST_CASE("Matern 5/2 kernel has the textbook values", "[kernel]") {
   CHECK(k(x, Eigen::Vector2d(0.4, 0.6)) == Approx(expected).epsilon(1e-12));
 }
 
-TEST_CASE("kernel gradient w.r.t. x matches finite differences", "[kernel][gradient]") {
+TEST_CASE("batched kernel values and x-gradients match the definition and finite differences",
+          "[kernel][gradient]") {
   std::mt19937_64 rng(7);
   for (int d : {1, 3, 12}) {
     const sps::MaternKernel k(params_for(d, rng));
-    const Eigen::VectorXd y = random_point(d, rng);
-    const Eigen::VectorXd x = random_point(d, rng);
-    const Eigen::VectorXd numeric =
-        numeric_gradient([&](const Eigen::VectorXd& z) { return k(z, y); }, x);
-    CHECK((k.gradient_x(x, y) - numeric).norm() < 1e-7);
-    // The batched form agrees with the single-point one.
-    Eigen::MatrixXd pts(d, 2);
-    pts.col(0) = y;
-    pts.col(1) = random_point(d, rng);
-    Eigen::VectorXd kv;
-    Eigen::MatrixXd dk;
-    k.cross_with_gradient(pts, x, kv, dk);
-    CHECK(kv(0) == Approx(k(x, y)));
-    CHECK((dk.col(0) - k.gradient_x(x, y)).norm() < 1e-12);
+    Eigen::MatrixXd pts(d, 3);
+    for (int i = 0; i < 3; ++i) pts.col(i) = random_point(d, rng);
+    Eigen::MatrixXd xs(d, 2);
+    xs.col(0) = random_point(d, rng);
+    xs.col(1) = pts.col(1);  // r = 0: the gradient factor must stay finite
+    Eigen::MatrixXd kv;
+    Eigen::MatrixXd q;
+    k.cross_batch(pts, xs, kv, q);
+    REQUIRE(q.allFinite());
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::VectorXd x = xs.col(j);
+        const Eigen::VectorXd y = pts.col(i);
+        CHECK(kv(i, j) == Approx(k(x, y)).epsilon(1e-10).margin(1e-14));
+        const Eigen::VectorXd analytic =
+            q(i, j) * ((x - y).array() * k.inverse_squared_lengths().array()).matrix();
+        const Eigen::VectorXd numeric =
+            numeric_gradient([&](const Eigen::VectorXd& z) { return k(z, y); }, x);
+        CHECK((analytic - numeric).norm() < 1e-7);
+      }
+    }
   }
 }
 
