@@ -34,7 +34,7 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
       if (eq != std::string::npos) {
         value = name.substr(eq + 1);
         name = name.substr(0, eq);
-      } else if (flags.count(name) != 0) {
+      } else if (flags.count(name) != 0 || name == "help") {
         value = "1";
       } else if (multi.count(name) != 0) {
         // Consume until the next option; negative numbers ("-1.5") are values, not options.

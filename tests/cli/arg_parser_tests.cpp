@@ -26,6 +26,12 @@ TEST_CASE("options, flags and values", "[cli]") {
   CHECK(a.get_double("missing", 2.5) == 2.5);
 }
 
+TEST_CASE("--help is always a flag, whatever the command declares", "[cli]") {
+  const auto a = parse({"cmd", "--help", "--dims", "3"});
+  CHECK(a.has("help"));
+  CHECK(a.get_int("dims", 0) == 3);
+}
+
 TEST_CASE("multi-value options take negative numbers and stop at -o", "[cli]") {
   const auto a = parse({"cmd", "--betas", "1.5", "-2", "-.5,3", "-o", "out.glb", "--x", "0.1"}, {},
                        {"betas", "x"});
