@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -41,6 +42,20 @@ std::string zip_error_text(int code) {
       return "corrupt zip archive (" + s + ")";
     }
   }
+}
+
+// libzip reports a zip whose end (the central directory) is cut off as "not a zip"; a file
+// that starts with a zip local header is almost always such a truncated download.
+bool starts_like_zip(const unsigned char* head, std::size_t size) {
+  return size >= 4 && head[0] == 'P' && head[1] == 'K' && head[2] == 3 && head[3] == 4;
+}
+
+std::string open_error_text(int code, bool zip_header) {
+  if (code == ZIP_ER_NOZIP && zip_header) {
+    return "truncated or damaged zip archive (it starts like a zip, but the directory at its "
+           "end is missing; download or copy the file again)";
+  }
+  return zip_error_text(code);
 }
 
 std::string strip_npy(const std::string& entry) {
@@ -130,7 +145,15 @@ NpzArchive NpzArchive::open_file(const std::filesystem::path& path) {
   int err = 0;
   errno = 0;
   a.impl_->zip = zip_open(a.label_.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &err);
-  if (!a.impl_->zip) throw ModelError(a.label_ + ": " + zip_error_text(err));
+  if (!a.impl_->zip) {
+    unsigned char head[4] = {0, 0, 0, 0};
+    std::size_t got = 0;
+    if (std::FILE* f = std::fopen(a.label_.c_str(), "rb")) {
+      got = std::fread(head, 1, sizeof head, f);
+      std::fclose(f);
+    }
+    throw ModelError(a.label_ + ": " + open_error_text(err, starts_like_zip(head, got)));
+  }
   a.impl_->fill_entries(a.label_);
   return a;
 }
@@ -153,7 +176,9 @@ NpzArchive NpzArchive::open_memory(const void* data, std::size_t size, const std
     const int code = zip_error_code_zip(&error);
     zip_source_free(src);
     zip_error_fini(&error);
-    throw ModelError(label + ": " + zip_error_text(code));
+    throw ModelError(
+        label + ": " +
+        open_error_text(code, starts_like_zip(static_cast<const unsigned char*>(data), size)));
   }
   zip_error_fini(&error);
   a.impl_->fill_entries(label);

@@ -259,7 +259,8 @@ TEST_CASE("loader: broken files", "[loader][errors]") {
   for (std::size_t keep : {bytes.size() / 2, bytes.size() - 30, std::size_t{100}}) {
     const auto cut = dir / ("cut" + std::to_string(keep) + ".npz");
     std::ofstream(cut, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(keep));
-    expect_error(cut, {});  // names the file; the zip directory at the end is gone
+    // Names the file and says why: the zip directory at the end is gone.
+    expect_error(cut, {"truncated"});
   }
 
   // Flip bytes in the middle of the compressed data: CRC or inflate error, named per array.
