@@ -9,6 +9,7 @@
 #include "app/gallery_app.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
+#include "cli/gallery_display_options.hpp"
 
 namespace {
 
@@ -32,17 +33,7 @@ int run(int argc, char** argv) {
                        "animation-samples", "animation-scale", "model"});
   app::GalleryOptions o;
   o.launch_time = launch;
-  if (const auto m = args.get("model")) o.model_path = *m;
-  o.grid_size = args.get_int("grid", 3);
-  if (o.grid_size != 3 && o.grid_size != 5) throw cli::ArgError("--grid must be 3 or 5");
-  o.cell_size = args.get_int("cell-size", 400);
-  if (o.cell_size < 32) throw cli::ArgError("--cell-size must be at least 32");
-  o.samples = args.get_int("samples", 4);
-  o.animation_samples = args.get_int("animation-samples", 0);
-  o.animation_scale = static_cast<float>(args.get_double("animation-scale", 1.0));
-  if (!(o.animation_scale >= 0.25f && o.animation_scale <= 1.0f)) {
-    throw cli::ArgError("--animation-scale must be between 0.25 and 1");
-  }
+  cli::read_gallery_display_options(args, 400, o);
   o.benchmark_clicks = args.get_int("clicks", 12);
   o.benchmark_breakdown = args.has("breakdown");
   if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");

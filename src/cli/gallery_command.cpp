@@ -7,6 +7,7 @@
 #include "app/session_store.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
+#include "cli/gallery_display_options.hpp"
 
 namespace {
 
@@ -66,10 +67,8 @@ int run(int argc, char** argv) {
                        "optimizer-delay-ms"});
   app::GalleryOptions o;
   o.launch_time = launch;
-  if (const auto m = args.get("model")) o.model_path = *m;
+  cli::read_gallery_display_options(args, 0, o);
   o.components = args.get_int("components", 10);
-  o.grid_size = args.get_int("grid", 3);
-  if (o.grid_size != 3 && o.grid_size != 5) throw cli::ArgError("--grid must be 3 or 5");
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
   if (o.components < 1) throw cli::ArgError("--components must be at least 1");
@@ -97,13 +96,6 @@ int run(int argc, char** argv) {
         o.window_width < 320 || o.window_height < 240) {
       throw cli::ArgError("--window must look like 1600x1000");
     }
-  }
-  o.cell_size = args.get_int("cell-size", 0);
-  o.samples = args.get_int("samples", 4);
-  o.animation_samples = args.get_int("animation-samples", 0);
-  o.animation_scale = static_cast<float>(args.get_double("animation-scale", 1.0));
-  if (!(o.animation_scale >= 0.25f && o.animation_scale <= 1.0f)) {
-    throw cli::ArgError("--animation-scale must be between 0.25 and 1");
   }
   o.zoom_seconds = args.get_double("zoom-seconds", 1.5);
   if (!(o.zoom_seconds > 0.0)) throw cli::ArgError("--zoom-seconds must be positive");

@@ -19,6 +19,22 @@ sps::PreferenceModel fitted_model(int d, int preferences, unsigned seed) {
   return sps::PreferenceModel::fit(data, settings, sps::PreferenceModel(d, settings));
 }
 
+// What the plane construction starts from: x+, its posterior mean and x_EI.
+struct Incumbent {
+  Eigen::VectorXd x_plus;
+  double best_mean = 0.0;
+  Eigen::VectorXd x_ei;
+};
+
+Incumbent incumbent(const sps::PreferenceModel& model, std::mt19937_64& rng) {
+  Incumbent in;
+  in.x_plus = model.points().col(model.best_observed_index());
+  in.best_mean = model.mean(in.x_plus);
+  in.x_ei = sps::maximize_expected_improvement(model, in.best_mean, in.x_plus, rng,
+                                               sps::EiSearchSettings{});
+  return in;
+}
+
 // E[max(y - best, 0)] for y ~ N(mean, var) by the trapezoid rule over +-12 sigma.
 double integrated_ei(double mean, double var, double best) {
   const double sigma = std::sqrt(var);
@@ -73,11 +89,8 @@ TEST_CASE("expected improvement gradient matches finite differences", "[ei][grad
 TEST_CASE("x_EI beats every random point and stays in the box", "[ei]") {
   const int d = 4;
   const auto model = fitted_model(d, 5, 23);
-  const Eigen::VectorXd x_plus = model.points().col(model.best_observed_index());
-  const double best_mean = model.mean(x_plus);
   std::mt19937_64 rng(1);
-  const Eigen::VectorXd x_ei =
-      sps::maximize_expected_improvement(model, best_mean, x_plus, rng, sps::EiSearchSettings{});
+  const auto [x_plus, best_mean, x_ei] = incumbent(model, rng);
   REQUIRE(x_ei.size() == d);
   CHECK(x_ei.minCoeff() >= 0.0);
   CHECK(x_ei.maxCoeff() <= 1.0);
@@ -92,11 +105,8 @@ TEST_CASE("x_EI beats every random point and stays in the box", "[ei]") {
 TEST_CASE("the SPS plane: centre x+, vertex x_EI, orthogonal v, inside the box", "[plane]") {
   const int d = 6;
   const auto model = fitted_model(d, 6, 24);
-  const Eigen::VectorXd x_plus = model.points().col(model.best_observed_index());
-  const double best_mean = model.mean(x_plus);
   std::mt19937_64 rng(2);
-  const Eigen::VectorXd x_ei =
-      sps::maximize_expected_improvement(model, best_mean, x_plus, rng, sps::EiSearchSettings{});
+  const auto [x_plus, best_mean, x_ei] = incumbent(model, rng);
   const sps::Plane plane =
       sps::sps_plane(model, x_plus, x_ei, best_mean, rng, sps::PlaneSearchSettings{});
   CHECK((plane.c - x_plus).norm() == Approx(0.0).margin(1e-15));

@@ -1,0 +1,15 @@
+// Options the window-opening commands (`gallery`, `bench-gui`) share: which model, which
+// grid, and how the cells are rendered. One place, so they validate the same way.
+#pragma once
+
+#include "app/gallery_app.hpp"
+#include "cli/arg_parser.hpp"
+
+namespace cli {
+
+// Reads --model, --grid, --cell-size, --samples, --animation-samples and --animation-scale
+// into `o`; `default_cell_size` 0 means "fit the window". Throws ArgError with the option name.
+void read_gallery_display_options(const ArgParser& args, int default_cell_size,
+                                  app::GalleryOptions& o);
+
+}  // namespace cli
