@@ -2,6 +2,7 @@
 // is a closed manifold, the rig is sane, and bodies across the +-3 box stay plausible.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,7 @@
 #ifdef SG_HAVE_BODY_LIBRARY
 #include "body/body_model.hpp"
 #include "body/model_loader.hpp"
+#include "body/npz_reader.hpp"
 #endif
 
 using default_model::GeneratedModel;
@@ -108,15 +110,52 @@ std::array<std::vector<int>, 5> face_regions(const GeneratedModel& m, const mc::
 
 }  // namespace
 
-TEST_CASE("the generator reproduces assets/default_body.npz byte for byte", "[model]") {
-  std::ifstream in(SG_DEFAULT_MODEL_ASSET, std::ios::binary);
-  REQUIRE(in.good());
-  const std::vector<std::uint8_t> committed((std::istreambuf_iterator<char>(in)), {});
+#ifdef SG_HAVE_BODY_LIBRARY
+// Floating-point results differ in their last bits between CPUs (libm and vector code paths),
+// so the regenerated model is compared with the committed one array by array within a
+// tolerance, never byte for byte. Only the largest difference is reported, never the arrays.
+TEST_CASE("the generator reproduces assets/default_body.npz within 1e-5", "[model]") {
   const GeneratedModel& m = generated();
-  CHECK(committed.size() == m.npz.size());
-  CHECK(committed.size() < 5u * 1024u * 1024u);
-  CHECK(committed == m.npz);
+  CHECK(m.npz.size() < 5u * 1024u * 1024u);
+  const body::NpzArchive committed = body::NpzArchive::open_file(SG_DEFAULT_MODEL_ASSET);
+  const body::NpzArchive regenerated =
+      body::NpzArchive::open_memory(m.npz.data(), m.npz.size(), "regenerated default model");
+  const std::vector<std::string> names = committed.names();
+  CHECK(names == regenerated.names());  // a handful of short strings
+  for (const std::string& name : names) {
+    if (!regenerated.contains(name)) continue;
+    INFO("array '" << name << "'");
+    const body::NpyArray a = committed.read(name);
+    const body::NpyArray b = regenerated.read(name);
+    CHECK(a.header.descr == b.header.descr);
+    CHECK(a.header.shape_string() == b.header.shape_string());
+    if (a.header.shape != b.header.shape) continue;
+    if (a.header.is_numeric()) {
+      const std::vector<double> va = a.to_double();
+      const std::vector<double> vb = b.to_double();
+      double largest = 0;
+      std::size_t where = 0;
+      for (std::size_t i = 0; i < va.size(); ++i) {
+        const double d = std::abs(va[i] - vb[i]);
+        if (!(d <= largest)) {  // also catches NaN
+          largest = d;
+          where = i;
+        }
+      }
+      INFO("largest difference " << largest << " at element " << where << " of " << va.size());
+      // Lengths are metres, so 1e-5 is a hundredth of a millimetre; integer arrays (faces,
+      // kintree) must match exactly, which any difference of 1 or more fails.
+      CHECK(largest <= 1e-5);
+    } else {
+      const std::vector<std::string> sa = a.to_strings();
+      const std::vector<std::string> sb = b.to_strings();
+      std::size_t differing = 0;
+      for (std::size_t i = 0; i < sa.size(); ++i) differing += sa[i] != sb[i] ? 1 : 0;
+      CHECK(differing == 0);
+    }
+  }
 }
+#endif
 
 TEST_CASE("the template is a closed, consistently wound manifold of 5k-15k vertices", "[model]") {
   const GeneratedModel& m = generated();
