@@ -1,4 +1,4 @@
-#include "sps/simulated_user.hpp"
+#include "testing/simulated_user.hpp"
 
 #include <algorithm>
 #include <limits>

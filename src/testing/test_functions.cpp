@@ -1,4 +1,4 @@
-#include "sps/test_functions.hpp"
+#include "testing/test_functions.hpp"
 
 #include <cmath>
 #include <stdexcept>

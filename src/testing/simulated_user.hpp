@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "sps/plane.hpp"
-#include "sps/test_functions.hpp"
+#include "testing/test_functions.hpp"
 
 namespace sps {
 
