@@ -160,7 +160,8 @@ std::string Session::to_json() const {
   json j;
   j["format"] = "sequential-gallery-session";
   j["version"] = 1;
-  j["settings"] = {{"model_path", settings_.model_path},
+  j["settings"] = {{"space", settings_.space},
+                   {"model_path", settings_.model_path},
                    {"components", settings_.components},
                    {"grid_size", settings_.grid_size},
                    {"zoom_levels", settings_.zoom_levels},
@@ -190,6 +191,7 @@ Session Session::from_json(const std::string& text) {
     if (j.at("version").get<int>() != 1) throw std::runtime_error("unsupported session version");
     const auto& s = j.at("settings");
     SessionSettings settings;
+    settings.space = s.value("space", "body");  // files from before photos were bodies
     settings.model_path = s.at("model_path").get<std::string>();
     settings.components = s.at("components").get<int>();
     settings.grid_size = s.at("grid_size").get<int>();

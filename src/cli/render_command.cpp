@@ -3,13 +3,13 @@
 #include <iostream>
 #include <string>
 
-#include "app/body_scene.hpp"
 #include "body/model_loader.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
+#include "spaces/body_scene.hpp"
 
 namespace {
 
@@ -64,9 +64,9 @@ int run(int argc, char** argv_in) {
     betas[static_cast<Eigen::Index>(i)] = static_cast<float>(list[i]);
 
   render::HeadlessContext context;
-  const auto mesh = app::body_from_betas(model, betas);
+  const auto mesh = spaces::body_from_betas(model, betas);
   const auto pixels =
-      app::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
+      spaces::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
   render::write_png(*out, width, height, pixels);
   std::cout << "wrote " << *out << " (" << width << "x" << height << ", " << model.name << ", "
             << render::view_preset_name(*preset) << " view, " << context.renderer() << ")\n";

@@ -1,8 +1,8 @@
-#include "app/body_scene.hpp"
+#include "spaces/body_scene.hpp"
 
 #include "render/cell_framebuffer.hpp"
 
-namespace app {
+namespace spaces {
 
 body::BodyMesh body_at(const body::Model& model, const Eigen::VectorXd& x) {
   return body_from_betas(model, body::betas_from_unit(x));
@@ -42,4 +42,4 @@ std::vector<std::uint8_t> render_body_image(const body::Model& model, const body
   return fbo.read_pixels();
 }
 
-}  // namespace app
+}  // namespace spaces

@@ -1,32 +1,26 @@
-#include "app/body_view.hpp"
+#include "app/cell_view.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "app/body_scene.hpp"
-
 namespace app {
 
-bool BodyView::set_body(const body::Model& model, const Eigen::VectorXd& point,
-                        bool want_measurements) {
-  if (x.size() == point.size() && (x - point).cwiseAbs().maxCoeff() < 1e-12 && !mesh.empty()) {
-    if (want_measurements && !measurements) {
-      measurements = body::measure(model, body_at(model, x));
-    }
-    return false;
+bool CellView::set_point(DesignSpace& space, const Eigen::VectorXd& x, bool details) {
+  const bool same =
+      prepared && prepared->x.size() == x.size() && (prepared->x - x).cwiseAbs().maxCoeff() < 1e-12;
+  if (same && (!details || prepared->has_details)) return false;
+  prepared = space.prepare(x, details);
+  if (!content) content = space.make_content();
+  if (!same) {
+    content->upload(*prepared);
+    dirty = true;
   }
-  x = point;
-  const body::BodyMesh m = body_at(model, x);
-  show_mesh(mesh, model, m);
-  measurements.reset();
-  if (want_measurements) measurements = body::measure(model, m);
-  dirty = true;
   return true;
 }
 
-bool BodyView::draw(render::BodyRenderer& renderer, const render::Camera& camera,
-                    int camera_version, int width, int height, int samples,
-                    const render::BodyStyle& style, bool fast, float scale, bool fast_multisample) {
+bool CellView::draw(const CellLook& look, int camera_version, int width, int height, int samples,
+                    bool fast, float scale, bool fast_multisample) {
+  if (!content) return false;
   width = std::max(width, 16);
   height = std::max(height, 16);
   if (fbo.width() != width || fbo.height() != height || fbo.samples() != samples ||
@@ -41,7 +35,7 @@ bool BodyView::draw(render::BodyRenderer& renderer, const render::Camera& camera
   const bool multisample = !fast || fast_multisample;
   fbo.set_linear_filtering(region_w != width || region_h != height);
   fbo.begin(region_w, region_h, multisample);
-  renderer.draw(mesh, camera, region_w, region_h, style);
+  content->draw(region_w, region_h, look);
   fbo.end(region_w, region_h, multisample);
   dirty = false;
   drawn_fast = fast;
@@ -49,7 +43,7 @@ bool BodyView::draw(render::BodyRenderer& renderer, const render::Camera& camera
   return true;
 }
 
-std::array<float, 4> BodyView::uv() const {
+std::array<float, 4> CellView::uv() const {
   float a[2], b[2];
   fbo.region_uv(region_w, region_h, a, b);
   return {a[0], a[1], b[0], b[1]};

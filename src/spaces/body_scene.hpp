@@ -13,7 +13,7 @@
 #include "render/camera.hpp"
 #include "render/mesh_gpu.hpp"
 
-namespace app {
+namespace spaces {
 
 // The mesh for x in [0,1]^K (beta = 6x - 3), feet on y = 0.
 body::BodyMesh body_at(const body::Model& model, const Eigen::VectorXd& x);
@@ -31,4 +31,4 @@ std::vector<std::uint8_t> render_body_image(const body::Model& model, const body
                                             const render::Camera& camera, int width, int height,
                                             int samples = 4);
 
-}  // namespace app
+}  // namespace spaces
