@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -74,6 +76,12 @@ class DesignSpace {
   // to it when given. Called inside an ImGui window, GL thread only.
   virtual void draw_inspector(const PreparedCell& shown, const char* shown_label,
                               const PreparedCell* reference, const char* reference_label) const = 0;
+
+  // Named numbers of a prepared cell with details, for tables and CSV files (a body's
+  // measurements in metres; nothing for a photo, whose x is all there is).
+  virtual std::vector<std::pair<std::string, double>> numbers(const PreparedCell& /*cell*/) const {
+    return {};
+  }
 
   // Export: the file a point becomes (glTF for bodies, an image and its parameters for photos).
   virtual std::string default_export_name() const = 0;  // "body.glb"

@@ -159,6 +159,16 @@ void BodySpace::draw_inspector(const app::PreparedCell& shown, const char* shown
   ImGui::EndTable();
 }
 
+std::vector<std::pair<std::string, double>> BodySpace::numbers(
+    const app::PreparedCell& cell) const {
+  const auto& b = static_cast<const BodyCell&>(cell);
+  if (!b.measurements) return {};
+  return {{"height_m", b.measurements->height},
+          {"chest_m", b.measurements->chest},
+          {"waist_m", b.measurements->waist},
+          {"hips_m", b.measurements->hips}};
+}
+
 std::string BodySpace::export_point(const Eigen::VectorXd& x,
                                     const std::filesystem::path& path) const {
   body::export_gltf(model_, body::betas_from_unit(x), path);

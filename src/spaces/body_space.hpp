@@ -35,6 +35,7 @@ class BodySpace : public app::DesignSpace {
   void draw_inspector(const app::PreparedCell& shown, const char* shown_label,
                       const app::PreparedCell* reference,
                       const char* reference_label) const override;
+  std::vector<std::pair<std::string, double>> numbers(const app::PreparedCell& cell) const override;
   std::string default_export_name() const override { return "body.glb"; }
   std::string export_hint() const override { return ".glb or .gltf"; }
   std::string export_point(const Eigen::VectorXd& x,
