@@ -809,7 +809,7 @@ void GalleryApp::draw_side_panel() {
   ImGui::InputText("##modelpath", &model_path_field_);
   ImGui::SetNextItemWidth(120);
   ImGui::InputInt("components", &components_field_);
-  components_field_ = std::clamp(components_field_, 1, 400);
+  components_field_ = std::clamp(components_field_, 1, sps::kMaxSearchDims);
   ImGui::TextUnformatted("Grid");
   ImGui::SameLine();
   ImGui::RadioButton("3x3", &grid_field_, 3);

@@ -1,6 +1,7 @@
 #include "cli/body_cli_common.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 #include "body/model_loader.hpp"
@@ -59,6 +60,15 @@ Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
                    model.name + "' has " + std::to_string(model.component_count()) + " components");
   }
   return betas;
+}
+
+void require_output_file(const std::string& path) {
+  std::error_code ec;
+  if (path.empty()) throw ArgError("-o needs a file name");
+  if (path.back() == '/' || std::filesystem::is_directory(path, ec)) {
+    throw ArgError("-o " + path + " is a folder; give a file name, e.g. " +
+                   (std::filesystem::path(path) / "body.glb").string());
+  }
 }
 
 std::string format_betas(const Eigen::VectorXf& betas) {

@@ -25,6 +25,9 @@ Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model);
 // Number of values given with --betas or --x.
 std::size_t shape_value_count(const ArgParser& args);
 
+// Throws ArgError when `path` (the -o value) names a folder instead of a file, before any work.
+void require_output_file(const std::string& path);
+
 // "0.25, -1, 0" for messages.
 std::string format_betas(const Eigen::VectorXf& betas);
 

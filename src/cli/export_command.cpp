@@ -32,6 +32,7 @@ int run(int argc_in, char** argv_in) {
   }
   args.reject_unknown({"model", "components", "betas", "x", "no-morph", "morph-betas", "output"});
   const std::string out = args.require("output");
+  cli::require_output_file(out);
   const body::Model model = cli::load_body_model(args);
   const Eigen::VectorXf betas = cli::read_betas(args, model);
   body::ExportOptions options;

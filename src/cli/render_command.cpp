@@ -32,6 +32,7 @@ int run(int argc, char** argv_in) {
       {"help", "model", "betas", "o", "output", "size", "view", "components", "samples"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
+  cli::require_output_file(*out);
   int width = 400, height = 400;
   if (const auto size = args.get("size")) {
     char x = 0;
