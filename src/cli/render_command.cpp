@@ -54,15 +54,10 @@ int run(int argc, char** argv_in) {
   const auto model_path = args.get("model");
   const body::Model model =
       model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
-  const auto list = args.get_doubles("betas");
-  if (static_cast<int>(list.size()) > model.component_count()) {
-    throw cli::ArgError("render: " + std::to_string(list.size()) + " betas given but the model '" +
-                        model.name + "' has " + std::to_string(model.component_count()) +
-                        " components");
-  }
+  cli::check_component_count(args, model);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
-  for (size_t i = 0; i < list.size(); ++i)
-    betas[static_cast<Eigen::Index>(i)] = static_cast<float>(list[i]);
+  const Eigen::VectorXf given = cli::read_betas(args, model);
+  betas.head(given.size()) = given;
 
   render::HeadlessContext context;
   const auto mesh = app::body_from_betas(model, betas);
