@@ -30,8 +30,25 @@ body::Model load_body_model(const ArgParser& args) {
     throw ArgError("--components " + std::to_string(components) + " but " + std::to_string(given) +
                    " shape values were given");
   }
-  if (const auto path = args.get("model")) return body::load_model(*path, components);
-  return body::load_default_model(components);
+  const int expressions = args.get_int("expressions", 0);
+  if (expressions < 0) throw ArgError("--expressions must be >= 0");
+  const auto path = args.get("model");
+  const body::Model model = path ? body::load_model(*path, components, expressions)
+                                 : body::load_default_model(components);
+  const std::string what = path ? "'" + *path + "'" : std::string("the default model");
+  // The loader keeps what the file has; asking for more is a mistake worth saying.
+  if (args.has("components") && components > model.total_components) {
+    throw ArgError("--components " + std::to_string(components) + ": " + what + " has only " +
+                   std::to_string(model.total_components) + " shape components");
+  }
+  if (expressions > model.total_expressions) {
+    throw ArgError(
+        "--expressions " + std::to_string(expressions) + ": " + what + " has " +
+        (model.total_expressions == 0
+             ? std::string("no expression components (only SMPL-X has them)")
+             : "only " + std::to_string(model.total_expressions) + " expression components"));
+  }
+  return model;
 }
 
 Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
