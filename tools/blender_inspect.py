@@ -1,7 +1,8 @@
 # Imports an exported .glb/.gltf/.vrm into Blender headless and prints what a rigger sees:
 # bones (direction vs. their child), shape keys, and the height of the mesh at zero weights.
 #
-#   blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- FILE
+#   blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- FILE [OUT.png]
+#   (with OUT.png: also a small Cycles render of the imported body, front view)
 #   (tools/blender_check.sh does this for several exports when Blender is installed)
 #
 # Blender 3.4 (Debian 12) fails every glTF import with the default "Shading" option because
@@ -74,3 +75,42 @@ if len(keys) > 1:
     lo1, hi1 = height()
     print(f"height with '{keys[1].name}' = 1: {hi1 - lo1:.5f} m")
     keys[1].value = 0.0
+
+
+if len(sys.argv) > sys.argv.index("--") + 2:
+    out = sys.argv[sys.argv.index("--") + 2]
+    scene = bpy.context.scene
+    cam_data = bpy.data.cameras.new("cam")
+    cam_data.type = "ORTHO"
+    cam_data.ortho_scale = 2.2
+    cam = bpy.data.objects.new("cam", cam_data)
+    scene.collection.objects.link(cam)
+    cam.location = mathutils.Vector((0.0, -5.0, (hi + lo) / 2))  # glTF +Z front = Blender -Y
+    cam.rotation_euler = (math.radians(90), 0.0, 0.0)
+    scene.camera = cam
+    light = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    light.rotation_euler = (math.radians(60), 0.0, math.radians(-30))
+    scene.collection.objects.link(light)
+    scene.render.engine = "CYCLES"
+    scene.cycles.samples = 8
+    scene.cycles.use_denoising = False
+    scene.view_layers[0].cycles.use_denoising = False
+    scene.render.resolution_x, scene.render.resolution_y = 440, 480
+    scene.render.filepath = out
+    bpy.ops.render.render(write_still=True)
+    print(f"rendered {out}")
+    # Posing works from the rest pose: bend the left knee and the left elbow (about each
+    # bone's local x, which the exporter keeps perpendicular to the bone) and render again.
+    for names, angle in ((("left_knee", "leftLowerLeg"), -70), (("left_elbow", "leftLowerArm"), -60)):
+        pb = next((arm.pose.bones[n] for n in names if n in arm.pose.bones), None)
+        if pb is not None:
+            pb.rotation_mode = "XYZ"
+            pb.rotation_euler = (math.radians(angle), 0.0, 0.0)
+    bpy.context.view_layer.update()
+    turn = math.radians(-60)  # the camera looks along (-sin, cos, 0) after turning about z
+    cam.location = mathutils.Vector((5.0 * math.sin(turn), -5.0 * math.cos(turn), (hi + lo) / 2))
+    cam.rotation_euler = (math.radians(90), 0.0, turn)
+    posed = out[:-4] + "_posed.png"
+    scene.render.filepath = posed
+    bpy.ops.render.render(write_still=True)
+    print(f"rendered {posed} (left knee -70 deg, left elbow -60 deg, seen from the front right)")

@@ -69,7 +69,7 @@ void print_help() {
          "--rest-pose t   T-pose: arms horizontal, posed by the model's own skinning with its\n"
          "                pose correctives when the file has posedirs (always for .vrm)\n"
          "--joint-names humanoid  bones named as VRM humanoid bones (hips, leftUpperArm, ...)\n\n"
-         "Presets (options given after --preset override it):\n";
+         "Presets (other options given with --preset override its choices):\n";
   for (const auto& p : body::export_presets()) {
     std::cout << "  " << p.name << std::string(9 - std::min<std::size_t>(8, p.name.size()), ' ')
               << p.description << " (" << p.extension << ")\n";
