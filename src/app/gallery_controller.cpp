@@ -335,18 +335,23 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
   update_display();
 }
 
-// The one place that decides what happens to a session file a new search replaces.
+// What happens to a session file that a new search replaces: session_store's rotation of
+// set-aside copies (<name>.previous, .previous.1, ...).
 void GalleryController::keep_old_session_file(const std::string& why) {
   if (options_.session_path.empty()) return;
   std::error_code ec;
   if (!fs::exists(options_.session_path, ec)) return;
-  fs::path aside = options_.session_path;
-  aside += ".previous";
-  fs::rename(options_.session_path, aside, ec);
+  std::string kept;
+  try {
+    kept = "kept it as " + set_aside_session(options_.session_path).string();
+  } catch (const std::exception& e) {
+    say(MessageKind::kError, (why.empty() ? std::string() : why + "; ") + e.what());
+    return;
+  }
   if (!why.empty()) {
-    say(MessageKind::kError, why + "; kept it as " + aside.string());
-  } else if (!ec) {
-    say(MessageKind::kInfo, "new session; the previous one is kept as " + aside.string());
+    say(MessageKind::kError, why + "; " + kept);
+  } else {
+    say(MessageKind::kInfo, "new session; the previous one is " + kept.substr(5));
   }
 }
 
@@ -354,9 +359,9 @@ void GalleryController::autosave() {
   if (!autosave_enabled_ || pending_resume_) return;
   try {
     save_session(*session_, options_.session_path);
-    autosave_problem_.clear();
+    autosave_status_.succeeded();
   } catch (const std::exception& e) {
-    autosave_problem_ = e.what();
+    autosave_status_.failed(e.what());
     say(MessageKind::kError, std::string("autosave failed: ") + e.what());
   }
 }

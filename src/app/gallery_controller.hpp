@@ -21,6 +21,7 @@
 
 #include "app/design_space.hpp"
 #include "app/session.hpp"
+#include "app/session_store.hpp"
 #include "app/worker.hpp"
 #include "sps/zoom_grid.hpp"
 
@@ -126,7 +127,7 @@ class GalleryController {
 
   const Message& message() const { return message_; }
   // Persistent: the last autosave failed (cleared by the next one that succeeds).
-  const std::string& autosave_problem() const { return autosave_problem_; }
+  const std::string& autosave_problem() const { return autosave_status_.error(); }
   bool autosave_enabled() const { return autosave_enabled_; }
   const std::filesystem::path& session_path() const { return options_.session_path; }
   const std::filesystem::path& last_export() const { return last_export_; }
@@ -174,7 +175,7 @@ class GalleryController {
   double last_submit_seconds_ = 0.0;
 
   bool autosave_enabled_ = true;
-  std::string autosave_problem_;
+  AutosaveStatus autosave_status_;
   Message message_;
   std::filesystem::path last_export_;
   int inspected_ = -1;

@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "sps/plane_search.hpp"
+
 namespace app {
 
 namespace fs = std::filesystem;
@@ -500,7 +502,7 @@ void GalleryView::draw_open(GalleryController& c) {
   if (open_kind_ == "body") {
     ImGui::SetNextItemWidth(120);
     ImGui::InputInt("components", &open_dims_);
-    open_dims_ = std::clamp(open_dims_, 1, 400);
+    open_dims_ = std::clamp(open_dims_, 1, sps::kMaxSearchDims);
   }
   ImGui::TextUnformatted("Grid");
   ImGui::SameLine();

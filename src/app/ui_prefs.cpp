@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/session_store.hpp"
+#include "util/atomic_file.hpp"
 
 namespace app {
 
@@ -53,7 +53,7 @@ bool save_ui_prefs(const UiPrefs& p, const std::filesystem::path& path) {
                             {"view_preset", p.view_preset},   {"open_panel", p.open_panel},
                             {"save_panel", p.save_panel},     {"history_panel", p.history_panel}};
   try {
-    write_file_atomically(path, j.dump(1));
+    util::write_file_atomically(path, j.dump(1), /*create_folders=*/true);
     return true;
   } catch (const std::exception&) {
     return false;

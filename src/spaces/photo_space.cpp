@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/session_store.hpp"
 #include "render/photo_renderer.hpp"
 #include "spaces/photo_enhancement.hpp"
+#include "util/atomic_file.hpp"
 
 namespace spaces {
 
@@ -169,8 +169,8 @@ std::string PhotoSpace::export_point(const Eigen::VectorXd& x,
   j["parameters"] = named;
   std::filesystem::path json_path = path;
   json_path.replace_extension(".json");
-  app::write_file_atomically(path, bytes);
-  app::write_file_atomically(json_path, j.dump(1));
+  util::write_file_atomically(path, bytes);
+  util::write_file_atomically(json_path, j.dump(1));
   return std::filesystem::absolute(path).string() + " (" + std::to_string(out.width) + "x" +
          std::to_string(out.height) + ", " + std::to_string((bytes.size() + 512) / 1024) +
          " KiB) and " + json_path.filename().string();
