@@ -168,6 +168,7 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::StartOver&) { start_over(); }, [&](const intent::Open& o) { open(o); },
           [&](const intent::Resume&) { resume(); }, [&](const intent::StartNew&) { start_new(); },
           [&](const intent::Export& e) { export_point(e.path); },
+          [&](const intent::UsePoint& u) { use_point(u.x); },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
                              ? n.history_index
@@ -298,6 +299,26 @@ void GalleryController::start_new() {
   keep_old_session_file("");
 }
 
+void GalleryController::use_point(const Eigen::VectorXd& x) {
+  if (busy() || worker_.busy()) return;
+  if (x.size() != space_->dimensions() || !x.allFinite() || x.minCoeff() < 0.0 ||
+      x.maxCoeff() > 1.0) {
+    say(MessageKind::kError, "the slider values are outside the search box");
+    return;
+  }
+  const Eigen::VectorXd previous_best = session_->current_best();
+  Submission submission;
+  submission.chosen = x;
+  if ((x - previous_best).norm() > 1e-9) submission.extra_comparisons.push_back({x, previous_best});
+  redo_.clear();
+  ++generation_;
+  point_job_ = x;
+  worker_.start(session_->search(), std::move(submission), generation_,
+                std::chrono::milliseconds(options_.optimizer_delay_ms));
+  submitted_generation_ = generation_;
+  say(MessageKind::kInfo, "the slider values are submitted as your choice; computing...");
+}
+
 void GalleryController::export_point(const fs::path& path) {
   if (path.empty()) {
     say(MessageKind::kError, "choose a file name (" + space_->export_hint() + ")");
@@ -390,6 +411,23 @@ void GalleryController::poll_worker() {
 }
 
 void GalleryController::install(SubmitWorker::Result result) {
+  if (point_job_) {
+    const Eigen::VectorXd x = *point_job_;
+    point_job_.reset();
+    if (result.generation != generation_) return;
+    if (!result.search) {
+      say(MessageKind::kError, "the optimizer failed: " + result.error);
+      return;
+    }
+    const sps::Plane before = session_->search().current_plane();
+    last_submit_seconds_ = result.seconds;
+    session_->adopt_point(x, std::move(*result.search));
+    inspected_ = -1;
+    after_change(before);
+    say(MessageKind::kSuccess, "the slider values are now the current best (plane " +
+                                   std::to_string(session_->planes_done()) + " done)");
+    return;
+  }
   if (result.generation != generation_ || !session_->submission_pending()) return;  // stale
   const sps::Plane before = session_->search().current_plane();
   if (!result.search) {

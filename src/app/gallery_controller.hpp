@@ -67,11 +67,16 @@ struct Export {
 struct Inspect {
   int history_index = -1;  // -1: back to the current best
 };
+// Expert sliders' "use this": x becomes the current best, submitted as preferred over the
+// previous best (it ends the current plane).
+struct UsePoint {
+  Eigen::VectorXd x;
+};
 }  // namespace intent
 
 using Intent = std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
                             intent::StartOver, intent::Open, intent::Resume, intent::StartNew,
-                            intent::Export, intent::Inspect>;
+                            intent::Export, intent::Inspect, intent::UsePoint>;
 
 enum class MessageKind { kInfo, kSuccess, kError };
 struct Message {
@@ -108,7 +113,8 @@ class GalleryController {
   const Session* resume_candidate() const { return pending_resume_ ? &*pending_resume_ : nullptr; }
   std::string resume_description() const;
 
-  bool busy() const { return session_->submission_pending(); }  // the optimizer is due/running
+  // The optimizer is due or running.
+  bool busy() const { return session_->submission_pending() || point_job_.has_value(); }
   bool animating() const { return animation_ != Animation::kNone; }
   bool zooming() const { return animation_ == Animation::kZoom; }
   // The points the grid shows this frame (between two grids while animating).
@@ -148,6 +154,7 @@ class GalleryController {
   void resume();
   void start_new();
   void export_point(const std::filesystem::path& path);
+  void use_point(const Eigen::VectorXd& x);
 
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
   void remember_for_redo();
@@ -169,6 +176,7 @@ class GalleryController {
   std::vector<Session> redo_;
 
   SubmitWorker worker_;
+  std::optional<Eigen::VectorXd> point_job_;  // a slider point being submitted
   int generation_ = 0;
   int space_generation_ = 0;
   int submitted_generation_ = -1;

@@ -154,7 +154,8 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
     cells_[i].clamped = points[i].clamped;
   }
   const Session& s = c.session();
-  best_.set_point(space, s.current_best(), true);
+  if (slider_x_ && slider_x_->size() != space.dimensions()) slider_x_.reset();
+  best_.set_point(space, slider_x_ ? *slider_x_ : s.current_best(), true);
   start_.set_point(space, s.start_point(), true);
   if (c.inspected() >= 0) {
     inspect_.set_point(space, s.history()[static_cast<std::size_t>(c.inspected())].chosen, true);
@@ -399,6 +400,8 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   char title[64];
   if (inspecting) {
     std::snprintf(title, sizeof title, "Plane %d choice", c.inspected() + 1);
+  } else if (slider_x_) {
+    std::snprintf(title, sizeof title, "Sliders (not chosen yet)");
   } else {
     std::snprintf(title, sizeof title, "Current best");
   }
@@ -425,6 +428,7 @@ void GalleryView::draw_side_panel(GalleryController& c) {
     c.space().draw_inspector(*shown.prepared, inspecting ? "chosen" : "current",
                              start_.prepared.get(), "start");
   }
+  draw_sliders(c);
   draw_history(c);
   draw_save(c);
   draw_open(c);
@@ -435,6 +439,43 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   ImGui::TextDisabled("Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save",
                       c.session().settings().grid_size == 3 ? "1-9" : "A-Y");
   if (c.space().uses_camera()) ImGui::TextDisabled("Drag a cell to orbit all bodies");
+}
+
+// The paper's user-study request: direct control for experts. The sliders start at the
+// current best; the preview follows them; "Use this" submits the point as preferred over the
+// previous best (it becomes the current best).
+void GalleryView::draw_sliders(GalleryController& c) {
+  if (!ImGui::CollapsingHeader("Expert sliders")) {
+    sliders_panel_ = false;
+    return;
+  }
+  sliders_panel_ = true;
+  const Eigen::VectorXd best = c.session().current_best();
+  Eigen::VectorXd x = slider_x_ ? *slider_x_ : best;
+  bool changed = false;
+  const float label_width = std::min(220.0f, ImGui::GetContentRegionAvail().x * 0.45f);
+  for (int i = 0; i < c.space().dimensions(); ++i) {
+    ImGui::PushID(i);
+    float v = static_cast<float>(x[i]);
+    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - label_width));
+    if (ImGui::SliderFloat(c.space().dimension_name(i).c_str(), &v, 0.0f, 1.0f, "%.3f")) {
+      x[i] = std::clamp(static_cast<double>(v), 0.0, 1.0);
+      changed = true;
+    }
+    ImGui::PopID();
+  }
+  if (changed) slider_x_ = x;
+  ImGui::BeginDisabled(!slider_x_ || c.busy());
+  if (ImGui::Button("Use this")) {
+    c.queue(intent::UsePoint{*slider_x_});
+    slider_x_.reset();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Back to the current best")) slider_x_.reset();
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Discard the slider changes");
+  }
 }
 
 void GalleryView::draw_history(GalleryController& c) {

@@ -74,6 +74,7 @@ class GalleryView {
   void draw_history(GalleryController& c);
   void draw_save(GalleryController& c);
   void draw_open(GalleryController& c);
+  void draw_sliders(GalleryController& c);
   void draw_modals(GalleryController& c);
   void draw_file_browser();
   void draw_hover_tooltip(const GalleryController& c);
@@ -109,6 +110,10 @@ class GalleryView {
   int open_dims_ = 10;
   int open_grid_ = 3;
   int open_zoom_ = 4;
+
+  // Expert sliders: while set, the "current best" preview shows this point instead.
+  std::optional<Eigen::VectorXd> slider_x_;
+  bool sliders_panel_ = false;
 
   // Questions pending an answer.
   std::optional<intent::Open> confirm_open_;

@@ -156,9 +156,18 @@ bool Session::undo_click() {
   }
   if (history_.empty() || !search_.undo()) return false;
   path_ = history_.back().path;
-  path_.pop_back();
+  if (!path_.empty()) path_.pop_back();  // a point set by sliders has no clicks
   history_.pop_back();
   return true;
+}
+
+void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search) {
+  if (chosen.size() != settings_.components) {
+    throw std::invalid_argument("adopt_point: the point has the wrong dimension");
+  }
+  history_.push_back({chosen, {}});
+  search_ = std::move(updated_search);
+  path_.clear();
 }
 
 bool Session::undo_plane() {

@@ -68,6 +68,10 @@ class Session {
   Submission submission() const;
   // Installs the search state computed from submission() (on a worker) and starts the next plane.
   void finish_plane(sps::PlaneSearch updated_search);
+  // Installs the search state computed from a point the user set directly (expert sliders,
+  // submitted as preferred over the previous best): it ends the current plane as if chosen
+  // there, with no clicks in its history entry.
+  void adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search);
 
   // Undo the last click; with no click on this plane, reopens the previous plane with its
   // clicks minus the last one. False if there is nothing to undo.
