@@ -87,10 +87,10 @@ std::string BodySpace::description() const {
 }
 
 std::string BodySpace::dimension_name(int i) const {
-  std::string name = "shape component " + std::to_string(i + 1);
+  std::string name = "shape " + std::to_string(i + 1);
   if (i >= 0 && i < model_.variance_share.size()) {
     char share[48];
-    std::snprintf(share, sizeof share, " (%.0f%% of variance)",
+    std::snprintf(share, sizeof share, " (%.0f%% var.)",
                   100.0 * static_cast<double>(model_.variance_share[i]));
     name += share;
   }
