@@ -508,14 +508,14 @@ void GalleryView::draw_history(GalleryController& c) {
 
 void GalleryView::draw_save(GalleryController& c) {
   ImGui::SetNextItemOpen(prefs_.save_panel, ImGuiCond_Once);
-  prefs_.save_panel = ImGui::CollapsingHeader("Save");
+  prefs_.save_panel = ImGui::CollapsingHeader("Save##panel");
   if (!prefs_.save_panel) return;
   ImGui::TextWrapped("Save the shown %s (%s)", c.inspected() >= 0 ? "choice" : "current best",
                      c.space().export_hint().c_str());
   ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 150.0f));
   ImGui::InputText("##savepath", &save_path_);
   ImGui::SameLine();
-  if (ImGui::Button("Save")) quick_save(c);
+  if (ImGui::Button("Save##quick")) quick_save(c);
   ImGui::SameLine();
   if (ImGui::Button("Save as...")) open_save_dialog(c);
 }
@@ -744,6 +744,7 @@ void GalleryView::request_export(GalleryController& c, const fs::path& path) {
   // Ask before replacing a file, except the one this session just saved (saving again).
   if (fs::exists(path, ec) && fs::absolute(path, ec) != fs::absolute(c.last_export(), ec)) {
     confirm_overwrite_ = path;
+    std::cout << "[gallery] asking before replacing " << path.string() << std::endl;
     return;
   }
   c.queue(intent::Export{path});

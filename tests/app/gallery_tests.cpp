@@ -360,3 +360,34 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
   }
   ImGui::DestroyContext();
 }
+
+TEST_CASE("the window's remembered settings round-trip; a broken file means defaults",
+          "[gallery]") {
+  TempDir dir;
+  const fs::path path = app::ui_prefs_path(dir.path / "session.json");
+  CHECK(path == dir.path / "ui.json");
+  app::UiPrefs p;
+  p.window_width = 1280;
+  p.window_height = 720;
+  p.save_folder = "/tmp/designs";
+  p.save_name = "me.glb";
+  p.view_preset = 2;
+  p.open_panel = true;
+  REQUIRE(app::save_ui_prefs(p, path));
+  const app::UiPrefs q = app::load_ui_prefs(path);
+  CHECK(q.window_width == 1280);
+  CHECK(q.window_height == 720);
+  CHECK(q.save_folder == "/tmp/designs");
+  CHECK(q.save_name == "me.glb");
+  CHECK(q.view_preset == 2);
+  CHECK(q.open_panel);
+  std::ofstream(path) << "{\"window_width\": -5, \"window_height\": \"big\", \"view_preset\": 9";
+  const app::UiPrefs broken = app::load_ui_prefs(path);
+  CHECK(broken.window_width == 0);
+  CHECK(broken.view_preset == 0);
+  std::ofstream(path) << "{\"window_width\": 99999, \"window_height\": 100, \"view_preset\": 9}";
+  const app::UiPrefs clamped = app::load_ui_prefs(path);
+  CHECK(clamped.window_width == 16384);
+  CHECK(clamped.window_height == 240);
+  CHECK(clamped.view_preset == 2);
+}
