@@ -293,8 +293,7 @@ void GalleryView::draw_grid(GalleryController& c, long frame) {
   hovered_ = -1;
   const bool busy = c.busy();
   // The second press of a double-click is never a zoom step of its own.
-  static bool second_of_double = false;
-  if (io.MouseClicked[0]) second_of_double = io.MouseDoubleClicked[0];
+  if (io.MouseClicked[0]) second_of_double_ = io.MouseDoubleClicked[0];
   camera_dragging_ = false;
   for (int row = 0; row < n; ++row) {
     for (int col = 0; col < n; ++col) {
@@ -317,8 +316,8 @@ void GalleryView::draw_grid(GalleryController& c, long frame) {
       }
       const float drag_threshold = io.MouseDragThreshold * io.MouseDragThreshold;
       if (pressed && io.MouseDragMaxDistanceSqr[0] < drag_threshold) {
-        if (second_of_double) {
-          second_of_double = false;
+        if (second_of_double_) {
+          second_of_double_ = false;
         } else {
           c.queue(intent::ClickCell{col, row});
         }

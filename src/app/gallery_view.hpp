@@ -92,6 +92,7 @@ class GalleryView {
   int active_preset_ = 0;  // -1 after a free orbit
   int camera_version_ = 0;
   bool camera_dragging_ = false;
+  bool second_of_double_ = false;  // the press being released is a double-click's second
 
   std::vector<CellView> cells_;
   CellView best_, start_, inspect_;

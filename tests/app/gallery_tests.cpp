@@ -391,3 +391,78 @@ TEST_CASE("the window's remembered settings round-trip; a broken file means defa
   CHECK(clamped.window_height == 240);
   CHECK(clamped.view_preset == 2);
 }
+
+namespace {
+
+// A view and a controller driven frame by frame as the window does, with ImGui fed synthetic
+// mouse input (no window, no backend; cells render on the headless EGL context).
+struct InProcessWindow {
+  render::HeadlessContext context;
+  std::unique_ptr<GalleryController> c;
+  std::unique_ptr<app::GalleryView> view;
+  double t = 0.0;
+  long frames = 0;
+
+  explicit InProcessWindow(app::ControllerOptions o) {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(1280, 720);
+    unsigned char* font = nullptr;
+    int fw = 0, fh = 0;
+    io.Fonts->GetTexDataAsRGBA32(&font, &fw, &fh);
+    c = std::make_unique<GalleryController>(o, &spaces::open_space, t);
+    view = std::make_unique<app::GalleryView>(app::ViewOptions{}, app::UiPrefs{});
+  }
+  ~InProcessWindow() {
+    view->release_gl();
+    view.reset();
+    c.reset();
+    ImGui::DestroyContext();
+  }
+  void frame(ImVec2 mouse, bool down, double seconds = 1.0 / 60.0) {
+    t += seconds;
+    c->begin_frame(t);
+    view->update_cells(*c, 1280, 720, 1.0f);
+    view->draw_cells(*c);
+    ImGuiIO& io = ImGui::GetIO();
+    io.DeltaTime = 1.0f / 60.0f;
+    io.MousePos = mouse;
+    io.MouseDown[0] = down;
+    ImGui::NewFrame();
+    view->build(*c, frames++);
+    ImGui::Render();
+  }
+  ImVec2 cell_centre(int index) const {
+    const auto& l = view->layout();
+    const int n = c->session().settings().grid_size;
+    return ImVec2(l.grid.x + static_cast<float>(index % n) * (l.cell + l.gap) + l.cell / 2,
+                  l.grid.y + static_cast<float>(index / n) * (l.cell + l.gap) + l.cell / 2);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a double-click on a cell is one zoom step; hovering shows the cell", "[gallery][gl]") {
+  TempDir dir;
+  auto o = options(dir.path / "s.json", "body");
+  o.zoom_seconds = 0.01;  // the zoom is over long before the second click
+  InProcessWindow w(o);
+  w.frame(ImVec2(-1, -1), false);  // lays the window out
+  const ImVec2 p = w.cell_centre(4);
+  w.frame(p, false);
+  w.frame(p, false);
+  CHECK(w.view->hovered_cell() == 4);
+  // Press, release, press, release within ImGui's double-click time (4 frames at 60 Hz).
+  w.frame(p, true);
+  w.frame(p, false);
+  w.frame(p, true);
+  w.frame(p, false);
+  for (int i = 0; i < 3; ++i) w.frame(p, false);
+  CHECK(w.c->session().clicks_on_plane() == 1);
+  // A later single click counts.
+  w.frame(p, true, 1.0);
+  w.frame(p, false);
+  w.frame(p, false);
+  CHECK(w.c->session().clicks_on_plane() == 2);
+}
