@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs everything the build, the tool and the tests need, from Debian packages (and the
-# Khronos glTF validator from npm for the export tests). Safe to re-run.
+# Khronos glTF validator, three.js and three-vrm from npm for the export tests). Safe to re-run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,5 +37,12 @@ fi
 if [ "${1:-}" = "--test" ] && [ ! -d tests/validator/node_modules/gltf-validator ]; then
   echo "setup: installing the Khronos glTF validator from npm"
   npm install --silent --no-audit --no-fund --prefix tests/validator gltf-validator >/dev/null
+fi
+# three.js and three-vrm (test tools only: exports loaded as a web app would) live in
+# tests/threejs/node_modules (git-ignored), pinned by tests/threejs/package-lock.json.
+if [ "${1:-}" = "--test" ] && { [ ! -d tests/threejs/node_modules/three ] ||
+                                [ ! -d tests/threejs/node_modules/@pixiv/three-vrm ]; }; then
+  echo "setup: installing three and @pixiv/three-vrm from npm"
+  npm ci --silent --no-audit --no-fund --prefix tests/threejs >/dev/null
 fi
 echo "setup: ok"

@@ -42,10 +42,21 @@ body::Model load_body_model(const ArgParser& args) {
     throw ArgError("--components " + std::to_string(components) + " but " + std::to_string(given) +
                    " shape values were given");
   }
+  const int expressions = args.get_int("expressions", 0);
+  if (expressions < 0) throw ArgError("--expressions must be >= 0");
   const auto path = args.get("model");
-  body::Model model =
-      path ? body::load_model(*path, components) : body::load_default_model(components);
+  const body::Model model = path ? body::load_model(*path, components, expressions)
+                                 : body::load_default_model(components);
+  // The loader keeps what the file has; asking for more is a mistake worth saying.
   check_component_count(args, model);
+  if (expressions > model.total_expressions) {
+    const std::string what = path ? "'" + *path + "'" : std::string("the default model");
+    throw ArgError(
+        "--expressions " + std::to_string(expressions) + ": " + what + " has " +
+        (model.total_expressions == 0
+             ? std::string("no expression components (only SMPL-X has them)")
+             : "only " + std::to_string(model.total_expressions) + " expression components"));
+  }
   return model;
 }
 

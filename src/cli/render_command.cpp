@@ -5,6 +5,7 @@
 
 #include "app/body_scene.hpp"
 #include "body/model_loader.hpp"
+#include "body/posing.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
@@ -16,9 +17,10 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery render [--model FILE.npz] [--betas B1 B2 ...] -o OUT.png\n"
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
-    "                                 [--components K] [--samples N]\n"
+    "                                 [--components K] [--samples N] [--rest-pose a|t]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
-    "Without --model the embedded default body model is used; betas default to 0 (mean body).\n";
+    "Without --model the embedded default body model is used; betas default to 0 (mean body).\n"
+    "--rest-pose t shows the body in the T-pose that `export --rest-pose t` writes.\n";
 
 int run(int argc, char** argv_in) {
   std::vector<std::string> store;  // "-o" spelled "--output" so that --betas 1 -2 -o x.png works
@@ -28,8 +30,8 @@ int run(int argc, char** argv_in) {
     std::cout << kUsage;
     return 0;
   }
-  args.reject_unknown(
-      {"help", "model", "betas", "o", "output", "size", "view", "components", "samples"});
+  args.reject_unknown({"help", "model", "betas", "o", "output", "size", "view", "components",
+                       "samples", "rest-pose"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
   cli::require_output_file(*out);
@@ -60,7 +62,12 @@ int run(int argc, char** argv_in) {
   betas.head(given.size()) = given;
 
   render::HeadlessContext context;
-  const auto mesh = app::body_from_betas(model, betas);
+  auto mesh = app::body_from_betas(model, betas);
+  const std::string pose = args.get_or("rest-pose", "a");
+  if (pose != "a" && pose != "t") {
+    throw cli::ArgError("render: --rest-pose must be a or t, got '" + pose + "'");
+  }
+  if (pose == "t") mesh = body::t_posed(model, mesh);
   const auto pixels =
       app::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
   render::write_png(*out, width, height, pixels);

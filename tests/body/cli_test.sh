@@ -45,7 +45,37 @@ if grep -q '"targets"' "$dir/body.gltf"; then fail "--no-morph still wrote morph
 command -v node >/dev/null || fail "node is not installed (bash tools/setup.sh --test)"
 node "$validator" "$dir/body.glb" "$dir/body.gltf" "$dir/betas.gltf"
 
+echo "== rest pose, presets, VRM"
+help=$("$exe" export --help)
+for p in blender unity unreal threejs vrm; do expect "$help" "^  $p "; done
+"$exe" export --model "$dir/cyl.npz" --betas 0.5 --rest-pose t -o "$dir/t.glb" >/dev/null
+"$exe" export --betas 0.5 --preset vrm -o "$dir/avatar.vrm" --vrm-authors "A; B" >/dev/null
+grep -q '"VRMC_vrm"' "$dir/avatar.vrm" || fail "avatar.vrm has no VRMC_vrm"
+grep -q '"authors":\["A","B"\]' "$dir/avatar.vrm" || fail "avatar.vrm: authors not set"
+"$exe" export --betas 0.5 --preset unity -o "$dir/unity.glb" >/dev/null
+grep -q '"leftUpperArm"' "$dir/unity.glb" || fail "--preset unity: no humanoid bone names"
+node "$validator" "$dir/t.glb" "$dir/avatar.vrm" "$dir/unity.glb"
+
 echo "== errors"
+if out=$("$exe" export --model "$dir/cyl.npz" --components 16 -o "$dir/x.glb" 2>&1); then
+  fail "--components 16 on a 10-component file accepted"
+fi
+expect "$out" "--components 16: the model 'cyl' has only 10 shape components"
+if out=$("$exe" export --model "$dir/cyl.npz" --no-morph --morph-betas -o "$dir/x.glb" 2>&1); then
+  fail "--no-morph with --morph-betas accepted"
+fi
+expect "$out" "--no-morph and --morph-betas"
+if out=$("$exe" export --model "$dir/cyl.npz" --expressions 2 -o "$dir/x.glb" 2>&1); then
+  fail "--expressions on a model without expressions accepted"
+fi
+expect "$out" "no expression components"
+if out=$("$exe" export --preset vrm -o "$dir/x.glb" 2>&1); then fail "--preset vrm to .glb"; fi
+expect "$out" "\*\.vrm"
+if out=$("$exe" export --rest-pose a -o "$dir/x.vrm" 2>&1); then fail "A-pose .vrm accepted"; fi
+expect "$out" "T-pose"
+if out=$("$exe" export --rest-pose x -o "$dir/x.glb" 2>&1); then fail "--rest-pose x accepted"; fi
+expect "$out" "a\|t"
+[ ! -e "$dir/x.glb" ] && [ ! -e "$dir/x.vrm" ] || fail "a failed export left a file"
 before=$(md5sum <"$dir/body.glb")
 if out=$("$exe" export --model "$dir/cyl.npz" --betas 1 2 3 4 5 6 7 8 9 10 11 --components 10 \
           -o "$dir/body.glb" 2>&1); then fail "too many betas accepted"; fi

@@ -9,10 +9,17 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <tuple>
+
+#include <Eigen/Geometry>
 
 #include "body/atomic_file.hpp"
+#include "body/bone_frames.hpp"
+#include "body/export_presets.hpp"
 #include "body/gltf_export.hpp"
 #include "body/model_loader.hpp"
+#include "body/posing.hpp"
 #include "npz_fixtures.hpp"
 
 using Catch::Contains;
@@ -27,6 +34,15 @@ body::Model cylinder(int joints = 24, int components = 10) {
   const auto path = fixtures::scratch_dir("gltf-model-" + std::to_string(joints)) / "cyl.npz";
   fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
   return body::load_model(path, components);
+}
+
+// A fixture model with SMPL-family look-alike arrays, loaded with `components` shape and
+// `expressions` expression components.
+body::Model family_model(const fixtures::Cylinder& c, const std::string& tag, int components = 0,
+                         int expressions = 0) {
+  const auto path = fixtures::scratch_dir("family-" + tag) / (tag + ".npz");
+  fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
+  return body::load_model(path, components, expressions);
 }
 
 Eigen::VectorXf some_betas(int k) {
@@ -68,9 +84,51 @@ int run_command(const std::string& cmd, std::string& output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// World matrix of every node (glTF: parent * T * R * S), by walking down from the roots.
+std::vector<Eigen::Matrix4d> world_matrices(const tinygltf::Model& doc) {
+  std::vector<Eigen::Matrix4d> world(doc.nodes.size(), Eigen::Matrix4d::Identity());
+  std::vector<int> parent(doc.nodes.size(), -1);
+  for (std::size_t i = 0; i < doc.nodes.size(); ++i) {
+    for (int c : doc.nodes[i].children) parent[static_cast<std::size_t>(c)] = static_cast<int>(i);
+  }
+  std::function<Eigen::Matrix4d(int)> get = [&](int i) -> Eigen::Matrix4d {
+    const auto& n = doc.nodes[static_cast<std::size_t>(i)];
+    Eigen::Matrix4d local = Eigen::Matrix4d::Identity();
+    if (n.rotation.size() == 4) {
+      local.topLeftCorner<3, 3>() =
+          Eigen::Quaterniond(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])
+              .toRotationMatrix();
+    }
+    if (n.translation.size() == 3) {
+      local.topRightCorner<3, 1>() =
+          Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
+    }
+    const int p = parent[static_cast<std::size_t>(i)];
+    return p < 0 ? local : Eigen::Matrix4d(get(p) * local);
+  };
+  for (std::size_t i = 0; i < doc.nodes.size(); ++i) world[i] = get(static_cast<int>(i));
+  return world;
+}
+
+// Largest |a - b| over the vertices (a: output order, 3 floats each; b: model order).
+float max_vertex_error(const std::vector<float>& a, const body::Vertices& b) {
+  float e = 0.0f;
+  for (Eigen::Index v = 0; v < b.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      e = std::max(e, std::abs(a[static_cast<std::size_t>(3 * v + k)] - b(v, k)));
+    }
+  }
+  return e;
+}
+
+const tinygltf::Node& joint_node(const tinygltf::Model& doc, int j) {
+  return doc.nodes.at(
+      static_cast<std::size_t>(doc.skins.at(0).joints.at(static_cast<std::size_t>(j))));
+}
+
 }  // namespace
 
-TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gltf]") {
+TEST_CASE("gltf: the base mesh is the design; one morph target per component edits it", "[gltf]") {
   const auto model = cylinder();
   const auto betas = some_betas(10);
   const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
@@ -85,60 +143,57 @@ TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gl
   const auto& prim = doc.meshes[0].primitives.at(0);
   const int V = model.vertex_count();
 
-  // Base + sum(weights * targets) reproduces the evaluated, grounded body.
-  auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  // At zero weights (the default) the mesh is the evaluated, grounded design.
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
   REQUIRE(base.size() == static_cast<std::size_t>(3 * V));
+  CHECK(max_vertex_error(base, mesh.vertices) < 1e-5f);
   REQUIRE(prim.targets.size() == 10);
   REQUIRE(doc.meshes[0].weights.size() == 10);
-  for (std::size_t k = 0; k < 10; ++k) {
-    CHECK(doc.meshes[0].weights[k] == Approx(betas[static_cast<Eigen::Index>(k)]));
-    const auto t = accessor_data<float>(doc, prim.targets[k].at("POSITION"), 3);
-    for (std::size_t i = 0; i < base.size(); ++i) {
-      base[i] += static_cast<float>(doc.meshes[0].weights[k]) * t[i];
-    }
+  for (double w : doc.meshes[0].weights) CHECK(w == 0.0);
+  // Weight w on target k moves the body to beta_k + w (same ground offset).
+  for (int k : {0, 1, 4}) {
+    const auto t =
+        accessor_data<float>(doc, prim.targets[static_cast<std::size_t>(k)].at("POSITION"), 3);
+    auto moved = base;
+    for (std::size_t i = 0; i < moved.size(); ++i) moved[i] += 0.7f * t[i];
+    Eigen::VectorXf b = betas;
+    b[k] += 0.7f;
+    auto expect = body::evaluate(model, b);
+    expect.vertices.col(1).array() += offset;
+    CHECK(max_vertex_error(moved, expect.vertices) < 1e-5f);
   }
-  float max_err = 0.0f;
-  for (int v = 0; v < V; ++v) {
-    for (int a = 0; a < 3; ++a) {
-      max_err = std::max(max_err,
-                         std::abs(base[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
-    }
-  }
-  CHECK(max_err < 1e-5f);
   CHECK(offset == Approx(-body::evaluate(model, betas).vertices.col(1).minCoeff()));
 
   const auto normals = accessor_data<float>(doc, prim.attributes.at("NORMAL"), 3);
-  CHECK(normals[30] == Approx(mesh.normals(10, 0)));
+  CHECK(normals[30] == Approx(mesh.normals(10, 0)).margin(1e-6));
   const auto idx = accessor_data<std::uint32_t>(doc, prim.indices, 1);
   REQUIRE(idx.size() == static_cast<std::size_t>(model.faces.size()));
   CHECK(std::equal(idx.begin(), idx.end(), model.faces.data()));
+  CHECK(prim.attributes.count("TEXCOORD_0") == 0);  // the fixture has no vt/ft
 
   // Skin: 24 joints named after SMPL, hierarchy from kintree_table, weights normalised top 4.
   REQUIRE(doc.skins.size() == 1);
   const auto& skin = doc.skins[0];
   REQUIRE(skin.joints.size() == 24);
-  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[0])).name == "pelvis");
-  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[16])).name == "left_shoulder");
+  CHECK(joint_node(doc, 0).name == "pelvis");
+  CHECK(joint_node(doc, 16).name == "left_shoulder");
   for (int j = 1; j < 24; ++j) {
     const int parent_node =
         skin.joints[static_cast<std::size_t>(model.parents[static_cast<std::size_t>(j)])];
     const auto& ch = doc.nodes.at(static_cast<std::size_t>(parent_node)).children;
     CHECK(std::find(ch.begin(), ch.end(), skin.joints[static_cast<std::size_t>(j)]) != ch.end());
   }
-  // Global joint position = sum of translations up the chain = evaluated, grounded joint.
-  for (int j : {0, 7, 23}) {
-    Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int k = j; k >= 0; k = model.parents[static_cast<std::size_t>(k)]) {
-      const auto& t =
-          doc.nodes.at(static_cast<std::size_t>(skin.joints[static_cast<std::size_t>(k)]))
-              .translation;
-      p += Eigen::Vector3d(t[0], t[1], t[2]);
-    }
-    CHECK(p.cast<float>().isApprox(mesh.joints.row(j).transpose(), 1e-5f));
-  }
+  // Each joint's world position is the design's joint; world * inverse bind = identity.
+  const auto world = world_matrices(doc);
   const auto ibm = accessor_data<float>(doc, skin.inverseBindMatrices, 16);
-  CHECK(ibm[16 * 7 + 13] == Approx(-mesh.joints(7, 1)));
-  CHECK(ibm[16 * 7 + 15] == Approx(1.0));
+  for (int j = 0; j < 24; ++j) {
+    const Eigen::Matrix4d& w =
+        world[static_cast<std::size_t>(skin.joints[static_cast<std::size_t>(j)])];
+    CHECK(w.topRightCorner<3, 1>().cast<float>().isApprox(mesh.joints.row(j).transpose(), 1e-5f));
+    const Eigen::Matrix4d inv =
+        Eigen::Map<const Eigen::Matrix4f>(ibm.data() + 16 * j).cast<double>();
+    CHECK((w * inv - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() < 1e-5);
+  }
 
   const auto w = accessor_data<float>(doc, prim.attributes.at("WEIGHTS_0"), 4);
   const auto jj = accessor_data<std::uint8_t>(doc, prim.attributes.at("JOINTS_0"), 4);
@@ -169,7 +224,7 @@ TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gl
   CHECK(doc.meshes[0].extras.Get("targetNames").Get(3).Get<std::string>() == "shape_03");
 }
 
-TEST_CASE("gltf: default morph targets split +-3 sigma with weights in [0, 1]", "[gltf]") {
+TEST_CASE("gltf: default morph targets split +-3 sigma, all default weights 0", "[gltf]") {
   const auto model = cylinder();
   Eigen::VectorXf betas(10);
   betas << 1.5f, -3.0f, 0.0f, 0.3f, -0.6f, 2.0f, -1.0f, 0.0f, 3.0f, -0.1f;
@@ -180,33 +235,26 @@ TEST_CASE("gltf: default morph targets split +-3 sigma with weights in [0, 1]", 
   const auto& prim = gm.primitives.at(0);
   REQUIRE(prim.targets.size() == 20);
   REQUIRE(gm.weights.size() == 20);
-  for (int k = 0; k < 10; ++k) {
-    const double b = betas[k];
-    CHECK(gm.weights[static_cast<std::size_t>(2 * k)] == Approx(b > 0 ? b / 3 : 0.0));
-    CHECK(gm.weights[static_cast<std::size_t>(2 * k + 1)] == Approx(b < 0 ? -b / 3 : 0.0));
-  }
-  for (double w : gm.weights) {
-    CHECK(w >= 0.0);
-    CHECK(w <= 1.0);
-  }
+  for (double w : gm.weights) CHECK(w == 0.0);
   CHECK(gm.extras.Get("targetNames").Get(2).Get<std::string>() == "shape_01_pos");
   CHECK(gm.extras.Get("targetNames").Get(3).Get<std::string>() == "shape_01_neg");
-  // base + sum(w * target) is the chosen, grounded body.
-  auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
-  for (std::size_t t = 0; t < 20; ++t) {
-    const auto d = accessor_data<float>(doc, prim.targets[t].at("POSITION"), 3);
-    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += static_cast<float>(gm.weights[t]) * d[i];
-  }
+  // shape_01_neg at weight 0.5 takes beta 1 from -3 to -4.5; shape_00_pos at 1 from 1.5 to 4.5.
   auto mesh = body::evaluate(model, betas);
-  body::place_on_ground(mesh);
-  float max_err = 0.0f;
-  for (int v = 0; v < model.vertex_count(); ++v) {
-    for (int a = 0; a < 3; ++a) {
-      max_err = std::max(max_err,
-                         std::abs(pos[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
-    }
+  const float offset = body::place_on_ground(mesh);
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  CHECK(max_vertex_error(base, mesh.vertices) < 1e-5f);
+  for (const auto& [target, weight, component, change] :
+       std::vector<std::tuple<int, float, int, float>>{{3, 0.5f, 1, -1.5f}, {0, 1.0f, 0, 3.0f}}) {
+    auto pos = base;
+    const auto d =
+        accessor_data<float>(doc, prim.targets[static_cast<std::size_t>(target)].at("POSITION"), 3);
+    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += weight * d[i];
+    Eigen::VectorXf b = betas;
+    b[component] += change;
+    auto expect = body::evaluate(model, b);
+    expect.vertices.col(1).array() += offset;
+    CHECK(max_vertex_error(pos, expect.vertices) < 1e-5f);
   }
-  CHECK(max_err < 1e-5f);
   CHECK(doc.nodes.at(0).extras.Get("betas").Get(1).GetNumberAsDouble() == Approx(-3.0));
 }
 
@@ -302,6 +350,38 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
     }
   }
   REQUIRE(files.size() == 12);
+  // Every rest pose and preset, on the default model and on SMPL+H / SMPL-X / STAR look-alikes
+  // with UVs, pose correctives and expressions.
+  const body::Model def = body::load_default_model(10);
+  for (const auto& preset : body::export_presets()) {
+    const auto p = dir / ("preset_" + preset.name + preset.extension);
+    body::export_gltf(def, some_betas(10), p, preset.options);
+    files.push_back(p);
+  }
+  fixtures::Cylinder c;
+  c.uvs = true;
+  c.joints = 52;
+  c.components = 16;
+  c.pose_columns = 9 * 51;
+  const auto smplh = family_model(c, "v-smplh", 0);
+  c.joints = 55;
+  c.components = 20;
+  c.pose_columns = 9 * 54;
+  const auto smplx = family_model(c, "v-smplx", 0, 5);
+  c.joints = 24;
+  c.components = 10;
+  c.pose_columns = 93;
+  const auto star = family_model(c, "v-star", 0);
+  for (const auto* m : {&smplh, &smplx, &star}) {
+    for (const char* ext : {".glb", ".gltf", ".vrm"}) {
+      body::ExportOptions opt;
+      opt.rest_pose = body::RestPose::t;
+      const auto p = dir / (m->name + ext);
+      body::export_gltf(*m, some_betas(m->component_count()), p, opt);
+      files.push_back(p);
+    }
+  }
+  REQUIRE(files.size() == 26);
   for (const auto& f : files) {
     std::string report;
     const int rc = run_command("node '" + script + "' '" + f.string() + "'", report);

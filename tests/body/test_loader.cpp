@@ -124,7 +124,7 @@ TEST_CASE("loader: object arrays and extra arrays are skipped, optional arrays u
   auto arrays = fixtures::cylinder_model();
   auto entries = fixtures::encode_model(arrays);
   entries.push_back({"joint2num", fixtures::encode_npy_raw("|O", "()", false, "\x80\x02}q\x00.")});
-  entries.push_back({"posedirs", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
+  entries.push_back({"lmk_faces_idx", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
   entries.push_back(
       {"variance_share",
        fixtures::encode_npy({{10}, {.3, .2, .1, .1, .1, .05, .05, .04, .03, .03}, Dtype::f8})});
@@ -133,6 +133,28 @@ TEST_CASE("loader: object arrays and extra arrays are skipped, optional arrays u
   const auto m = body::load_model(path, 4);
   REQUIRE(m.variance_share.size() == 4);
   CHECK(m.variance_share[0] == Approx(0.3));
+  CHECK(m.posedirs.size() == 0);
+  CHECK(m.uvs.rows() == 0);
+
+  // Optional arrays the exporter uses (posedirs for a T-pose, vt/ft for UVs) are checked.
+  auto bad = entries;
+  bad.push_back({"posedirs", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
+  fixtures::write_npz(path, bad);
+  CHECK_THROWS_WITH(body::load_model(path),
+                    Contains("extra.npz") && Contains("'posedirs'") && Contains("(V, 3, P)"));
+  bad = entries;
+  bad.push_back({"vt", fixtures::encode_npy({{2, 2}, {0, 0, 1, 1}, Dtype::f4})});
+  fixtures::write_npz(path, bad);
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'vt'") && Contains("'ft'"));
+  bad.push_back({"ft", fixtures::encode_npy({{1, 3}, {0, 1, 1}, Dtype::i4})});
+  fixtures::write_npz(path, bad);
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'ft'") && Contains("(F, 3)"));
+  fixtures::Cylinder c;
+  c.uvs = true;
+  auto arrays_uv = fixtures::cylinder_model(c);
+  arrays_uv["ft"].values[5] = 1e6;
+  fixtures::write_npz(path, fixtures::encode_model(arrays_uv));
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'ft'") && Contains("out of range"));
 }
 
 TEST_CASE("loader: joint names for non-SMPL skeletons", "[loader]") {
