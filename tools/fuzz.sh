@@ -46,6 +46,8 @@ for t in "${targets[@]}"; do
   work="$build/corpus/$t"
   mkdir -p "$work"
   log="$build/$t.log"
+  stamp="$build/$t.started"
+  touch "$stamp"
   echo "fuzz: $t for ${seconds}s (seeds: $(ls "$seeds" | wc -l) files in $seeds)"
   # One process, one core; an input that needs over 2 GB or 30 s is a finding too.
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
@@ -55,7 +57,7 @@ for t in "${targets[@]}"; do
       "$work" "$seeds" >"$log" 2>&1
   rc=$?
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
-  crashes=$(ls "$build/artifacts" | grep -c "^$t-" || true)
+  crashes=$(find "$build/artifacts" -name "$t-*" -newer "$stamp" | wc -l)
   line="$t: ${execs:-?} executions in ${seconds}s, exit $rc, $crashes crash/timeout/oom input(s)"
   summary+=("$line")
   if [ $rc -ne 0 ]; then
