@@ -540,6 +540,15 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
+int morph_target_count(const Model& model, const ExportOptions& options) {
+  const int K = model.component_count();
+  const int shape = !options.morph_targets                           ? 0
+                    : options.morph_encoding == MorphEncoding::betas ? K
+                                                                     : 2 * K;
+  const bool expressions = model.expression_dirs.rows() == 3 * model.v_template.rows();
+  return shape + (expressions ? static_cast<int>(model.expression_dirs.cols()) : 0);
+}
+
 std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, FileKind kind,
                               const ExportOptions& options) {
   tinygltf::Model doc = build_document(model, betas, kind, options);

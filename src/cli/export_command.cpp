@@ -11,10 +11,6 @@
 
 namespace {
 
-// Writing more than this many morph targets makes files of tens of megabytes that some
-// clients load slowly; the user is told before it happens.
-constexpr int kManyMorphTargets = 200;
-
 std::string choice(const cli::ArgParser& args, const std::string& name,
                    const std::vector<std::string>& allowed, const std::string& fallback) {
   const std::string v = args.get_or(name, fallback);
@@ -174,12 +170,8 @@ int run(int argc_in, char** argv_in) {
 
   const body::Model model = cli::load_body_model(args);
   const Eigen::VectorXf betas = cli::read_betas(args, model);
-  const int shape_targets = !options.morph_targets ? 0
-                            : options.morph_encoding == body::MorphEncoding::betas
-                                ? model.component_count()
-                                : 2 * model.component_count();
-  const int targets = shape_targets + static_cast<int>(model.expression_dirs.cols());
-  if (targets > kManyMorphTargets) {
+  const int targets = body::morph_target_count(model, options);
+  if (targets > body::kManyMorphTargets) {
     std::cerr << "warning: writing " << targets << " morph targets (" << model.component_count()
               << " shape components"
               << (model.expression_dirs.cols() > 0

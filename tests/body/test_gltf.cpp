@@ -390,3 +390,21 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
     CHECK_THAT(report, Contains(": 0 errors, 0 warnings"));
   }
 }
+
+TEST_CASE("gltf: morph target count (the CLI warns above 200)", "[gltf][presets]") {
+  fixtures::Cylinder c;
+  c.joints = 55;
+  c.components = 20;
+  const auto smplx = family_model(c, "count", 0, 7);
+  body::ExportOptions opt;
+  CHECK(body::morph_target_count(smplx, opt) == 2 * 10 + 7);
+  opt.morph_encoding = body::MorphEncoding::betas;
+  CHECK(body::morph_target_count(smplx, opt) == 10 + 7);
+  opt.morph_targets = false;
+  CHECK(body::morph_target_count(smplx, opt) == 7);
+  c.joints = 24;
+  c.components = 120;
+  const auto many = family_model(c, "many", 0);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) == 240);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) > body::kManyMorphTargets);
+}
