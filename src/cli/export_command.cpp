@@ -68,7 +68,7 @@ void print_help() {
          "Presets (other options given with --preset override its choices):\n";
   for (const auto& p : body::export_presets()) {
     std::cout << "  " << p.name << std::string(9 - std::min<std::size_t>(8, p.name.size()), ' ')
-              << p.description << " (" << p.extension << ")\n";
+              << p.extension << "  " << p.description << "\n";
   }
   std::cout
       << "\nVRM meta (.vrm): --vrm-name S, --vrm-version S, --vrm-authors 'A; B', "
