@@ -5,6 +5,7 @@
 
 #include "body/export_presets.hpp"
 #include "body/gltf_export.hpp"
+#include "body/model_loader.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
@@ -168,7 +169,8 @@ int run(int argc_in, char** argv_in) {
                              meta.modification);
   if (args.has("vrm-allow-redistribution")) meta.allow_redistribution = true;
 
-  const body::Model model = cli::load_body_model(args);
+  body::Model model = cli::load_body_model(args);
+  if (options.rest_pose == body::RestPose::t || ext == ".vrm") body::load_pose_correctives(model);
   const Eigen::VectorXf betas = cli::read_betas(args, model);
   const int targets = body::morph_target_count(model, options);
   if (targets > body::kManyMorphTargets) {

@@ -53,8 +53,9 @@ int run(int argc, char** argv_in) {
 
   const int components = args.get_int("components", 0);
   const auto model_path = args.get("model");
-  const body::Model model =
+  body::Model model =
       model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
+  if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
   const auto list = args.get_doubles("betas");
   if (static_cast<int>(list.size()) > model.component_count()) {
     throw cli::ArgError("render: " + std::to_string(list.size()) + " betas given but the model '" +

@@ -42,7 +42,10 @@ body::Model family_model(const fixtures::Cylinder& c, const std::string& tag, in
                          int expressions = 0) {
   const auto path = fixtures::scratch_dir("family-" + tag) / (tag + ".npz");
   fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
-  return body::load_model(path, components, expressions);
+  body::Model m = body::load_model(path, components, expressions);
+  CHECK(m.posedirs.size() == 0);  // read on demand only
+  body::load_pose_correctives(m);
+  return m;
 }
 
 Eigen::VectorXf some_betas(int k) {
