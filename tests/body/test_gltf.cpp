@@ -707,6 +707,10 @@ TEST_CASE("gltf: .vrm holds VRMC_vrm with meta and the humanoid bone map", "[glt
                     Contains("x.vrm") && Contains("T-pose needs"));
   opt.rest_pose = body::RestPose::model;
   CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt), Contains("T-pose"));
+  opt.rest_pose = body::RestPose::automatic;
+  opt.vrm.commercial_usage = "free";
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt),
+                    Contains("commercialUsage") && Contains("'free'"));
 }
 
 TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
