@@ -143,6 +143,7 @@ class GalleryApp {
   int submitted_generation_ = -1;
   double last_submit_seconds_ = 0.0;
   bool autosave_enabled_ = true;
+  AutosaveStatus autosave_status_;  // shown until a save succeeds again
 
   std::unique_ptr<render::BodyRenderer> renderer_;
   render::Camera camera_;
@@ -318,12 +319,14 @@ bool GalleryApp::load_initial_state() {
       model_error = e.what();
     }
     if (!model_error.empty()) {
-      std::error_code ec;
-      fs::path aside = options_.session_path;
-      aside += ".previous";
-      fs::rename(options_.session_path, aside, ec);
-      message(MessageKind::kError, "cannot resume the previous session: " + model_error +
-                                       "; kept it as " + aside.string());
+      std::string kept;
+      try {
+        kept = "kept it as " + set_aside_session(options_.session_path).string();
+      } catch (const std::exception& e) {
+        kept = e.what();
+      }
+      message(MessageKind::kError,
+              "cannot resume the previous session: " + model_error + "; " + kept);
     } else if (options_.resume == GalleryOptions::Resume::kYes) {
       adopt_session(std::move(*loaded.session), std::move(resumed_model));
       message(MessageKind::kInfo, "resumed the session from " + options_.session_path.string());
@@ -331,10 +334,11 @@ bool GalleryApp::load_initial_state() {
       pending_resume_ = std::move(loaded.session);
       pending_resume_model_ = std::move(resumed_model);
     } else {
-      std::error_code ec;
-      fs::path aside = options_.session_path;
-      aside += ".previous";
-      fs::rename(options_.session_path, aside, ec);
+      try {
+        set_aside_session(options_.session_path);
+      } catch (const std::exception& e) {
+        message(MessageKind::kError, e.what());
+      }
     }
   }
   components_field_ = session_->settings().components;
@@ -366,7 +370,9 @@ void GalleryApp::autosave() {
   if (!autosave_enabled_ || pending_resume_) return;
   try {
     save_session(*session_, options_.session_path);
+    autosave_status_.succeeded();
   } catch (const std::exception& e) {
+    autosave_status_.failed(e.what());
     message(MessageKind::kError, std::string("autosave failed: ") + e.what());
   }
 }
@@ -803,7 +809,7 @@ void GalleryApp::draw_side_panel() {
   ImGui::InputText("##modelpath", &model_path_field_);
   ImGui::SetNextItemWidth(120);
   ImGui::InputInt("components", &components_field_);
-  components_field_ = std::clamp(components_field_, 1, 400);
+  components_field_ = std::clamp(components_field_, 1, sps::kMaxSearchDims);
   ImGui::TextUnformatted("Grid");
   ImGui::SameLine();
   ImGui::RadioButton("3x3", &grid_field_, 3);
@@ -823,6 +829,14 @@ void GalleryApp::draw_side_panel() {
   ImGui::TextDisabled("Model: %s (%d components)", model_.name.c_str(), model_.component_count());
   ImGui::TextDisabled("Session: %s%s", options_.session_path.string().c_str(),
                       autosave_enabled_ ? "" : " (autosave OFF)");
+  if (autosave_status_.failing()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.3f, 0.25f, 1));
+    ImGui::TextWrapped(
+        "AUTOSAVE IS FAILING - new clicks are not saved (the last good file is "
+        "kept): %s",
+        autosave_status_.error().c_str());
+    ImGui::PopStyleColor();
+  }
   ImGui::TextDisabled("Keys: 1-9 pick a cell, Backspace/Ctrl+Z undo, Ctrl+S save");
   ImGui::TextDisabled("Drag a cell to orbit all bodies");
   if (!message_.empty()) {
@@ -854,11 +868,12 @@ void GalleryApp::draw_resume_prompt() {
     ImGui::SameLine();
     if (ImGui::Button("Start new", ImVec2(140, 0))) {
       pending_resume_.reset();
-      std::error_code ec;
-      fs::path aside = options_.session_path;
-      aside += ".previous";
-      fs::rename(options_.session_path, aside, ec);
-      message(MessageKind::kInfo, "new session; the previous one is kept as " + aside.string());
+      try {
+        message(MessageKind::kInfo, "new session; the previous one is kept as " +
+                                        set_aside_session(options_.session_path).string());
+      } catch (const std::exception& e) {
+        message(MessageKind::kError, e.what());
+      }
       ImGui::CloseCurrentPopup();
     }
     ImGui::EndPopup();

@@ -6,6 +6,7 @@
 #include "body/joint_names.hpp"
 #include "body/model_validation.hpp"
 #include "body/npz_reader.hpp"
+#include "util/utf8.hpp"
 
 #if defined(SG_HAVE_DEFAULT_MODEL)
 extern "C" const unsigned char sg_default_model_begin[];
@@ -85,6 +86,8 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
     }
     names = a.to_strings();
   }
+  // Names go into glTF (JSON) and the window: invalid bytes become U+FFFD here, once.
+  for (auto& n : names) n = util::to_valid_utf8(n);
   for (std::size_t j = 0; j < J; ++j) {
     if (names.size() <= j) names.push_back("joint_" + std::to_string(j));
     if (names[j].empty()) names[j] = "joint_" + std::to_string(j);
@@ -156,8 +159,8 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
                      std::to_string(components));
   }
   Model m;
-  m.name = model_name;
-  m.source = npz.label();
+  m.name = util::to_valid_utf8(model_name);  // file names need not be UTF-8
+  m.source = util::to_valid_utf8(npz.label());
 
   // v_template (V x 3)
   NpyArray a = read_required_array(npz, "v_template");

@@ -133,6 +133,7 @@ int run(int argc_in, char** argv_in) {
     preset_ext = preset->extension;
   }
   const std::string out = args.require("output");
+  cli::require_output_file(out);
   const std::string ext = std::filesystem::path(out).extension().string();
   if (preset_ext == ".vrm" && ext != ".vrm") {
     throw cli::ArgError("--preset vrm writes a VRM avatar: name the output file *.vrm");

@@ -8,6 +8,7 @@
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
+#include "sps/plane_search.hpp"
 
 namespace {
 
@@ -71,7 +72,10 @@ int run(int argc, char** argv) {
   o.components = args.get_int("components", 10);
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
-  if (o.components < 1) throw cli::ArgError("--components must be at least 1");
+  if (o.components < 1 || o.components > sps::kMaxSearchDims) {
+    throw cli::ArgError("--components must be 1.." + std::to_string(sps::kMaxSearchDims) +
+                        " (more is not searchable by clicking)");
+  }
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
   o.session_path = args.get_or("session", app::default_session_path().string());
   const std::string resume = args.get_or("resume", "ask");

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,15 @@ int main(int argc, char** argv) {
       return 2;
     }
     return command->run(argc - 1, argv + 1);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sequential-gallery: error: out of memory (is an input file absurdly large?)\n";
+    return 1;
+  } catch (const std::logic_error& e) {
+    // length_error, out_of_range, ...: a library or programming error that escaped the checks
+    // that should have caught it; still a message and an exit code, never an abort.
+    std::cerr << "sequential-gallery: internal error: " << e.what()
+              << " (this is a bug; please report it with the command line)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "sequential-gallery: error: " << e.what() << "\n";
     return 1;

@@ -34,6 +34,7 @@ int run(int argc, char** argv_in) {
                        "samples", "rest-pose"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
+  cli::require_output_file(*out);
   int width = 400, height = 400;
   if (const auto size = args.get("size")) {
     char x = 0;
@@ -55,16 +56,11 @@ int run(int argc, char** argv_in) {
   const auto model_path = args.get("model");
   body::Model model =
       model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
+  cli::check_component_count(args, model);
   if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
-  const auto list = args.get_doubles("betas");
-  if (static_cast<int>(list.size()) > model.component_count()) {
-    throw cli::ArgError("render: " + std::to_string(list.size()) + " betas given but the model '" +
-                        model.name + "' has " + std::to_string(model.component_count()) +
-                        " components");
-  }
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
-  for (size_t i = 0; i < list.size(); ++i)
-    betas[static_cast<Eigen::Index>(i)] = static_cast<float>(list[i]);
+  const Eigen::VectorXf given = cli::read_betas(args, model);
+  betas.head(given.size()) = given;
 
   render::HeadlessContext context;
   auto mesh = app::body_from_betas(model, betas);

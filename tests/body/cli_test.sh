@@ -67,7 +67,7 @@ echo "== errors"
 if out=$("$exe" export --model "$dir/cyl.npz" --components 16 -o "$dir/x.glb" 2>&1); then
   fail "--components 16 on a 10-component file accepted"
 fi
-expect "$out" "--components 16: '.*cyl.npz' has only 10 shape components"
+expect "$out" "--components 16: the model 'cyl' has only 10 shape components"
 if out=$("$exe" export --model "$dir/cyl.npz" --no-morph --morph-betas -o "$dir/x.glb" 2>&1); then
   fail "--no-morph with --morph-betas accepted"
 fi
@@ -101,4 +101,26 @@ echo "$out"
 expect "$out" "usable  no: .*cut.npz"
 if out=$("$exe" measure --model "$dir/missing.npz" 2>&1); then fail "missing model accepted"; fi
 expect "$out" "missing.npz: file not found"
+
+echo "== messages users met (issue 10)"
+refuse() {  # refuse PATTERN COMMAND...: the command must fail with a message matching PATTERN
+  local pattern=$1; shift
+  if out=$("$@" 2>&1); then fail "accepted: $*"; fi
+  echo "$out"
+  expect "$out" "$pattern"
+}
+refuse "value number 1 is 1\.5, which is outside \[0, 1\]" "$exe" measure --model "$dir/cyl.npz" --x 1.5
+refuse "value number 2 is 1e\+30, which is outside \[-10, 10\]" \
+  "$exe" export --model "$dir/cyl.npz" --betas 0 1e30 -o "$dir/collapsed.glb"
+[ -e "$dir/collapsed.glb" ] && fail "betas of 1e30 wrote a file"
+refuse "'-inf' is not a number" "$exe" measure --model "$dir/cyl.npz" --betas -inf
+refuse "empty value between commas" "$exe" measure --model "$dir/cyl.npz" --betas 1,,2
+refuse "'0x10' is not a number" "$exe" measure --model "$dir/cyl.npz" --components 0x10
+refuse "--components 17: the model 'cyl' has only 10 shape components" \
+  "$exe" measure --model "$dir/cyl.npz" --components 17
+refuse "--components 1000000000: .* has only 10" \
+  "$exe" measure --model "$dir/cyl.npz" --components 1000000000
+refuse "/dev/zero: not a regular file" "$exe" inspect --model /dev/zero
+refuse "/dev/zero: not a regular file" "$exe" measure --model /dev/zero
+out=$("$exe" measure --model "$dir/cyl.npz" --betas 1e-320) || fail "--betas 1e-320 refused: $out"
 echo "body_cli: all checks passed"

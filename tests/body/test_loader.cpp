@@ -8,9 +8,11 @@
 #include <fstream>
 #include <limits>
 
+#include "body/gltf_export.hpp"
 #include "body/model_loader.hpp"
 #include "body/npz_reader.hpp"
 #include "npz_fixtures.hpp"
+#include "util/utf8.hpp"
 
 using Catch::Contains;
 using fixtures::Array;
@@ -357,4 +359,30 @@ TEST_CASE("loader: the embedded default model", "[loader]") {
   CHECK(height < 2.1);
   const auto all = body::load_default_model(0);
   CHECK(all.component_count() == all.total_components);
+}
+
+TEST_CASE("loader: joint and file names that are not UTF-8 become valid UTF-8",
+          "[loader][errors]") {
+  // Issue 10, defect 6: 'inspect' said usable and 'export' failed with nlohmann's
+  // "[json.exception.type_error.316] invalid UTF-8 byte".
+  fixtures::Cylinder c;
+  c.joints = 5;
+  auto entries = fixtures::encode_model(fixtures::cylinder_model(c));
+  std::string names;
+  for (const std::string n : {"ro\xff", "a\xc3", "b", "\xed\xa0\x80", "ok"}) {
+    std::string s = n;
+    s.resize(4, '\0');
+    names += s;
+  }
+  entries.push_back({"joint_names", fixtures::encode_npy_raw("|S4", "(5,)", false, names)});
+  const auto path = fixtures::scratch_dir("loader-utf8") / "caf\xe9-\xff.npz";
+  fixtures::write_npz(path, entries);
+  const auto m = body::load_model(path);
+  CHECK(m.joint_names == std::vector<std::string>{"ro\xEF\xBF\xBD", "a\xEF\xBF\xBD", "b",
+                                                  "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD", "ok"});
+  CHECK(m.name == "caf\xEF\xBF\xBD-\xEF\xBF\xBD");
+  for (const auto& n : m.joint_names) CHECK(util::is_valid_utf8(n));
+  // The exporter takes the names as they are now: no library exception.
+  CHECK_NOTHROW(body::export_gltf_bytes(m, Eigen::VectorXf::Zero(2), true));
+  CHECK_NOTHROW(body::export_gltf_bytes(m, Eigen::VectorXf::Zero(2), false));
 }
