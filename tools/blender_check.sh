@@ -21,3 +21,6 @@ for preset in blender unity threejs vrm; do
   blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- \
     "$out/$preset.$ext" 2>&1 | grep -v "^Blender quit\|^Read prefs\|^Info:\|^$" || exit 1
 done
+echo "== preset blender, Bone Dir = Blender (each joint's local +Y)"
+blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- \
+  "$out/blender.glb" --bone-dir BLENDER 2>&1 | grep -E "^file|worst|^height" || exit 1

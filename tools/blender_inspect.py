@@ -2,7 +2,14 @@
 # bones (direction vs. their child), shape keys, and the height of the mesh at zero weights.
 #
 #   blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- FILE [OUT.png]
-#   (with OUT.png: also a small Cycles render of the imported body, front view)
+#       [--bone-dir TEMPERANCE|BLENDER|FORTUNE]
+#   (with OUT.png: also small Cycles renders of the imported body, at rest and posed)
+#
+# Bone Dir is the importer's heuristic for bone tails. Its default (Temperance) points a bone
+# with one child at that child along the nearest local axis, which the exporter's bone
+# rotations make exact, but a bone with several children at their centroid (SMPL's pelvis,
+# whose hips and spine1 average to a point just in front of it); "Blender" uses each joint's
+# local +Y, which the exporter points at the main child (pelvis -> spine1).
 #   (tools/blender_check.sh does this for several exports when Blender is installed)
 #
 # Blender 3.4 (Debian 12) fails every glTF import with the default "Shading" option because
@@ -14,7 +21,13 @@ import sys
 import bpy
 import mathutils
 
-path = sys.argv[sys.argv.index("--") + 1]
+argv = sys.argv[sys.argv.index("--") + 1 :]
+bone_dir = "TEMPERANCE"  # the importer's default; "BLENDER" uses each node's +Y exactly
+if "--bone-dir" in argv:
+    i = argv.index("--bone-dir")
+    bone_dir = argv[i + 1]
+    del argv[i : i + 2]
+path = argv[0]
 bpy.ops.wm.read_factory_settings(use_empty=True)
 if path.lower().endswith(".vrm"):
     # Blender's importer only looks at .glb/.gltf names; a .vrm is a .glb.
@@ -25,14 +38,15 @@ if path.lower().endswith(".vrm"):
     copy = os.path.join(tempfile.mkdtemp(), os.path.basename(path)[:-4] + ".glb")
     shutil.copyfile(path, copy)
     path = copy
-bpy.ops.import_scene.gltf(filepath=path, import_shading="SMOOTH")
+bpy.ops.import_scene.gltf(filepath=path, import_shading="SMOOTH", bone_heuristic=bone_dir)
 
 arm = next(o for o in bpy.data.objects if o.type == "ARMATURE")
 mesh = next(o for o in bpy.data.objects if o.type == "MESH")
-print(f"file: {sys.argv[sys.argv.index('--') + 1]}")
+print(f"file: {argv[0]} (Bone Dir: {bone_dir})")
 print(f"armature: {len(arm.data.bones)} bones; mesh: {len(mesh.data.vertices)} vertices")
 
 worst, worst_name = 0.0, ""
+worst_single, worst_single_name = 0.0, ""  # bones with exactly one child
 print("bone                 head (m, Blender z up)        bone-to-child angle")
 for b in arm.data.bones:
     head = arm.matrix_world @ b.head_local
@@ -45,10 +59,13 @@ for b in arm.data.bones:
     angle = min(angles) if angles else None
     if angle is not None and angle > worst:
         worst, worst_name = angle, b.name
+    if angle is not None and len(b.children) == 1 and angle > worst_single:
+        worst_single, worst_single_name = angle, b.name
     if angle is not None or b.parent is None:
         shown = f"{angle:6.2f} deg" if angle is not None else "(root/leaf)"
         print(f"  {b.name:18s} ({head.x:+.3f}, {head.y:+.3f}, {head.z:+.3f})   {shown}")
-print(f"worst bone-to-child angle: {worst:.3f} deg ({worst_name})")
+print(f"worst bone-to-child angle: {worst:.3f} deg ({worst_name}); "
+      f"among bones with one child: {worst_single:.3f} deg ({worst_single_name or '-'})")
 
 keys = mesh.data.shape_keys.key_blocks if mesh.data.shape_keys else []
 print(f"shape keys: {len(keys)}")
@@ -77,8 +94,8 @@ if len(keys) > 1:
     keys[1].value = 0.0
 
 
-if len(sys.argv) > sys.argv.index("--") + 2:
-    out = sys.argv[sys.argv.index("--") + 2]
+if len(argv) > 1:
+    out = argv[1]
     scene = bpy.context.scene
     cam_data = bpy.data.cameras.new("cam")
     cam_data.type = "ORTHO"

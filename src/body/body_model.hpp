@@ -40,9 +40,9 @@ struct Model {
   Eigen::MatrixXf expression_dirs;
   int total_expressions = 0;
 
-  // Optional pose correctives (`posedirs`, 3V x P, row 3v + axis). In SMPL's layout P = 9 (J-1)
-  // and the feature is (R_j - I) row by row for joints 1..J-1; other layouts (STAR's) are kept
-  // but not applied.
+  // Optional pose correctives (`posedirs`, 3V x P, row 3v + axis), read on demand by
+  // load_pose_correctives(). In SMPL's layout P = 9 (J-1) and the feature is (R_j - I) row by
+  // row for joints 1..J-1; other layouts (STAR's) are kept but not applied.
   Eigen::MatrixXf posedirs;
 
   // Optional texture coordinates (`vt`, T x 2, origin bottom left) and per-face indices into

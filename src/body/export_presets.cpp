@@ -20,24 +20,15 @@ ExportPreset make(const char* name, const char* ext, const char* description, Re
 
 const std::vector<ExportPreset>& export_presets() {
   static const std::vector<ExportPreset> presets = {
-      make("blender", ".glb",
-           "the model's own rest pose, +-3 sigma shape keys (0..1, Blender clamps negative "
-           "values), SMPL joint names",
+      make("blender", ".glb", "model's own rest pose, +-3 sigma shape keys (0..1), SMPL names",
            RestPose::model, MorphEncoding::split_signed, JointNaming::model),
-      make("unity", ".glb",
-           "T-pose and humanoid bone names (Humanoid avatar maps itself), +-3 sigma blend "
-           "shapes (0..1)",
+      make("unity", ".glb", "T-pose, humanoid bone names (hips, leftUpperArm, ...), +-3 sigma",
            RestPose::t, MorphEncoding::split_signed, JointNaming::humanoid),
-      make("unreal", ".glb",
-           "T-pose (retargeting base pose), humanoid bone names, +-3 sigma morph targets "
-           "(0..1)",
+      make("unreal", ".glb", "T-pose (retargeting base pose), humanoid bone names, +-3 sigma",
            RestPose::t, MorphEncoding::split_signed, JointNaming::humanoid),
-      make("threejs", ".glb",
-           "the model's own rest pose, one morph target per component (influence = change "
-           "of beta, may be negative), SMPL joint names",
+      make("threejs", ".glb", "model's own rest pose, one target per component (w = d beta)",
            RestPose::model, MorphEncoding::betas, JointNaming::model),
-      make("vrm", ".vrm",
-           "VRM 1.0 avatar: T-pose, VRMC_vrm humanoid map and meta, +-3 sigma morph targets",
+      make("vrm", ".vrm", "VRM 1.0 avatar: T-pose, VRMC_vrm humanoid map and meta, +-3 sigma",
            RestPose::t, MorphEncoding::split_signed, JointNaming::model),
   };
   return presets;

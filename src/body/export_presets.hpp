@@ -12,7 +12,7 @@ namespace body {
 struct ExportPreset {
   std::string name;         // "blender", "unity", ...
   std::string extension;    // the file type it suggests: ".glb" or ".vrm"
-  std::string description;  // one line for --help and the dialog
+  std::string description;  // one short line (<= 66 characters) for --help and the dialog
   ExportOptions options;
 };
 

@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -193,6 +194,24 @@ std::array<float, 4> quaternion_of(const Eigen::Matrix3f& r) {
 tinygltf::Value vrm_extension(const Model& model, const std::vector<std::string>& names,
                               const ExportOptions& options) {
   const VrmMeta& m = options.vrm;
+  // The schema's enumerations: a wrong value would make a file VRM readers reject.
+  const auto require_one_of = [](const std::string& field, const std::string& value,
+                                 std::initializer_list<const char*> allowed) {
+    std::string list;
+    for (const char* a : allowed) {
+      if (value == a) return;
+      list += (list.empty() ? "" : "|") + std::string(a);
+    }
+    throw ExportError("VRM meta '" + field + "' must be one of " + list + ", got '" + value + "'");
+  };
+  require_one_of("avatarPermission", m.avatar_permission,
+                 {"onlyAuthor", "onlySeparatelyLicensedPerson", "everyone"});
+  require_one_of("commercialUsage", m.commercial_usage,
+                 {"personalNonProfit", "personalProfit", "corporation"});
+  require_one_of("creditNotation", m.credit_notation, {"required", "unnecessary"});
+  require_one_of("modification", m.modification,
+                 {"prohibited", "allowModification", "allowModificationRedistribution"});
+  if (m.license_url.empty()) throw ExportError("VRM meta 'licenseUrl' must not be empty");
   tinygltf::Value::Object meta;
   meta["name"] = str(m.name.empty() ? (model.name.empty() ? "body" : model.name) : m.name);
   meta["version"] = str(m.version);
@@ -539,6 +558,15 @@ std::string lower_extension(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+int morph_target_count(const Model& model, const ExportOptions& options) {
+  const int K = model.component_count();
+  const int shape = !options.morph_targets                           ? 0
+                    : options.morph_encoding == MorphEncoding::betas ? K
+                                                                     : 2 * K;
+  const bool expressions = model.expression_dirs.rows() == 3 * model.v_template.rows();
+  return shape + (expressions ? static_cast<int>(model.expression_dirs.cols()) : 0);
+}
 
 std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, FileKind kind,
                               const ExportOptions& options) {

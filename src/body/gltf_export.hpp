@@ -82,6 +82,14 @@ struct ExportOptions {
 void export_gltf(const Model& model, const Eigen::VectorXf& betas,
                  const std::filesystem::path& path, const ExportOptions& options = {});
 
+// How many morph targets an export of `model` with `options` writes (shape and expression
+// targets), so a caller can warn before writing a very large file.
+int morph_target_count(const Model& model, const ExportOptions& options);
+
+// Above this many morph targets files get large (tens of megabytes or more) and some tools
+// load them slowly: callers warn first.
+constexpr int kManyMorphTargets = 200;
+
 enum class FileKind { glb, gltf, vrm };
 
 // The same document as bytes. Throws ExportError on invalid betas or a skeleton the chosen

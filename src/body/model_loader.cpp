@@ -105,18 +105,19 @@ long long shape_columns(long long joints, long long columns) {
 
 using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-void read_optional_arrays(const NpzArchive& npz, Model& m) {
+void read_posedirs(const NpzArchive& npz, Model& m) {
   const long long V = m.vertex_count();
-  if (npz.contains("posedirs")) {
-    const NpyArray a = npz.read("posedirs");
-    if (!a.header.needs_pickle()) {
-      require_shape(npz, "posedirs", a.header, {V, 3, -1},
-                    "(V, 3, P) with V = " + std::to_string(V) + " from v_template");
-      const long long P = static_cast<long long>(a.header.shape[2]);
-      const auto pd = finite_floats(npz, "posedirs", a);
-      m.posedirs = Eigen::Map<const RowMat>(pd.data(), 3 * V, P);
-    }
-  }
+  if (!npz.contains("posedirs")) return;
+  const NpyArray a = npz.read("posedirs");
+  if (a.header.needs_pickle()) return;
+  require_shape(npz, "posedirs", a.header, {V, 3, -1},
+                "(V, 3, P) with V = " + std::to_string(V) + " from v_template");
+  const long long P = static_cast<long long>(a.header.shape[2]);
+  const auto pd = finite_floats(npz, "posedirs", a);
+  m.posedirs = Eigen::Map<const RowMat>(pd.data(), 3 * V, P);
+}
+
+void read_optional_arrays(const NpzArchive& npz, Model& m) {
   if (npz.contains("vt") != npz.contains("ft")) {
     fail_array(npz, npz.contains("vt") ? "vt" : "ft",
                "texture coordinates need both 'vt' (T, 2) and 'ft' (F, 3); the other is missing");
@@ -248,6 +249,13 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
 }
 
 }  // namespace
+
+void load_pose_correctives(Model& model) {
+  std::error_code ec;
+  if (model.posedirs.size() > 0 || !std::filesystem::is_regular_file(model.source, ec)) return;
+  const NpzArchive npz = NpzArchive::open_file(model.source);
+  read_posedirs(npz, model);
+}
 
 Model load_model(const std::filesystem::path& path, int components, int expressions) {
   const NpzArchive npz = NpzArchive::open_file(path);

@@ -5,15 +5,12 @@
 
 #include "body/export_presets.hpp"
 #include "body/gltf_export.hpp"
+#include "body/model_loader.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
 
 namespace {
-
-// Writing more than this many morph targets makes files of tens of megabytes that some
-// clients load slowly; the user is told before it happens.
-constexpr int kManyMorphTargets = 200;
 
 std::string choice(const cli::ArgParser& args, const std::string& name,
                    const std::vector<std::string>& allowed, const std::string& fallback) {
@@ -72,7 +69,7 @@ void print_help() {
          "Presets (other options given with --preset override its choices):\n";
   for (const auto& p : body::export_presets()) {
     std::cout << "  " << p.name << std::string(9 - std::min<std::size_t>(8, p.name.size()), ' ')
-              << p.description << " (" << p.extension << ")\n";
+              << p.extension << "  " << p.description << "\n";
   }
   std::cout
       << "\nVRM meta (.vrm): --vrm-name S, --vrm-version S, --vrm-authors 'A; B', "
@@ -173,14 +170,11 @@ int run(int argc_in, char** argv_in) {
                              meta.modification);
   if (args.has("vrm-allow-redistribution")) meta.allow_redistribution = true;
 
-  const body::Model model = cli::load_body_model(args);
+  body::Model model = cli::load_body_model(args);
+  if (options.rest_pose == body::RestPose::t || ext == ".vrm") body::load_pose_correctives(model);
   const Eigen::VectorXf betas = cli::read_betas(args, model);
-  const int shape_targets = !options.morph_targets ? 0
-                            : options.morph_encoding == body::MorphEncoding::betas
-                                ? model.component_count()
-                                : 2 * model.component_count();
-  const int targets = shape_targets + static_cast<int>(model.expression_dirs.cols());
-  if (targets > kManyMorphTargets) {
+  const int targets = body::morph_target_count(model, options);
+  if (targets > body::kManyMorphTargets) {
     std::cerr << "warning: writing " << targets << " morph targets (" << model.component_count()
               << " shape components"
               << (model.expression_dirs.cols() > 0

@@ -40,7 +40,8 @@ int run(int argc, char** argv) {
     return 1;
   }
   try {
-    const body::Model m = body::load_model(path, 0);
+    body::Model m = body::load_model(path, 0);
+    body::load_pose_correctives(m);
     std::printf("usable  yes: %d vertices, %d faces, %d joints (root '%s'), %d shape components\n",
                 m.vertex_count(), static_cast<int>(m.faces.rows()), m.joint_count(),
                 m.joint_names.empty() ? "" : m.joint_names.front().c_str(), m.total_components);

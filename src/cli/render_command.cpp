@@ -54,9 +54,10 @@ int run(int argc, char** argv_in) {
 
   const int components = args.get_int("components", 0);
   const auto model_path = args.get("model");
-  const body::Model model =
+  body::Model model =
       model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
   cli::check_component_count(args, model);
+  if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
   const Eigen::VectorXf given = cli::read_betas(args, model);
   betas.head(given.size()) = given;

@@ -240,9 +240,29 @@ std::map<std::string, Array> cylinder_model(const Cylinder& c) {
 
   const int smpl_parents[24] = {-1, 0, 0, 0,  1,  2,  3,  4,  5,  6,  7,  8,
                                 9,  9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
+  // SMPL+H (52) and SMPL-X (55): SMPL's first 22 joints, (SMPL-X) jaw and eyes on the head,
+  // then three-joint finger chains on each wrist, as the models' public descriptions have it.
+  std::vector<int> family(static_cast<std::size_t>(J), 0);
+  if (J == 52 || J == 55) {
+    for (int j = 0; j < 22; ++j) family[static_cast<std::size_t>(j)] = smpl_parents[j];
+    int next = 22;
+    if (J == 55) {
+      for (; next < 25; ++next) family[static_cast<std::size_t>(next)] = 15;
+    }
+    for (int wrist : {20, 21}) {
+      for (int finger = 0; finger < 5; ++finger, next += 3) {
+        family[static_cast<std::size_t>(next)] = wrist;
+        family[static_cast<std::size_t>(next + 1)] = next;
+        family[static_cast<std::size_t>(next + 2)] = next + 1;
+      }
+    }
+  }
   Array kt{{2, static_cast<std::size_t>(J)}, {}, Dtype::i8};
   for (int j = 0; j < J; ++j) {
-    kt.values.push_back(J == 24 ? smpl_parents[j] : (j == 0 ? 4294967295.0 : (j - 1) / 2));
+    kt.values.push_back(J == 24              ? smpl_parents[j]
+                        : j == 0             ? 4294967295.0
+                        : J == 52 || J == 55 ? family[static_cast<std::size_t>(j)]
+                                             : (j - 1) / 2);
   }
   for (int j = 0; j < J; ++j) kt.values.push_back(j);
   if (J != 24) kt.dtype = Dtype::u4;

@@ -42,7 +42,10 @@ body::Model family_model(const fixtures::Cylinder& c, const std::string& tag, in
                          int expressions = 0) {
   const auto path = fixtures::scratch_dir("family-" + tag) / (tag + ".npz");
   fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
-  return body::load_model(path, components, expressions);
+  body::Model m = body::load_model(path, components, expressions);
+  CHECK(m.posedirs.size() == 0);  // read on demand only
+  body::load_pose_correctives(m);
+  return m;
 }
 
 Eigen::VectorXf some_betas(int k) {
@@ -389,4 +392,343 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
     CHECK(rc == 0);
     CHECK_THAT(report, Contains(": 0 errors, 0 warnings"));
   }
+}
+
+TEST_CASE("gltf: morph target count (the CLI warns above 200)", "[gltf][presets]") {
+  fixtures::Cylinder c;
+  c.joints = 55;
+  c.components = 20;
+  const auto smplx = family_model(c, "count", 0, 7);
+  body::ExportOptions opt;
+  CHECK(body::morph_target_count(smplx, opt) == 2 * 10 + 7);
+  opt.morph_encoding = body::MorphEncoding::betas;
+  CHECK(body::morph_target_count(smplx, opt) == 10 + 7);
+  opt.morph_targets = false;
+  CHECK(body::morph_target_count(smplx, opt) == 7);
+  c.joints = 24;
+  c.components = 120;
+  const auto many = family_model(c, "many", 0);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) == 240);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) > body::kManyMorphTargets);
+}
+
+TEST_CASE("gltf: every bone points at its child (local +Y), leaves continue their parent",
+          "[gltf][rig]") {
+  const body::Model model = body::load_default_model(10);
+  const auto betas = some_betas(10);
+  for (const auto pose : {body::RestPose::model, body::RestPose::t}) {
+    body::ExportOptions opt;
+    opt.rest_pose = pose;
+    const auto bytes = body::export_gltf_bytes(model, betas, true, opt);
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model doc;
+    std::string err, warn;
+    REQUIRE(loader.LoadBinaryFromMemory(&doc, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned>(bytes.size())));
+    const auto world = world_matrices(doc);
+    const auto targets = body::bone_targets(model.parents, model.joint_names);
+    double worst = 0.0;
+    for (int j = 0; j < model.joint_count(); ++j) {
+      const auto& wj =
+          world[static_cast<std::size_t>(doc.skins[0].joints[static_cast<std::size_t>(j)])];
+      const Eigen::Vector3d axis = wj.topLeftCorner<3, 3>() * Eigen::Vector3d::UnitY();
+      CHECK(std::abs(wj.topLeftCorner<3, 3>().determinant() - 1.0) < 1e-5);
+      const int c = targets[static_cast<std::size_t>(j)];
+      if (c < 0) continue;
+      const auto& wc =
+          world[static_cast<std::size_t>(doc.skins[0].joints[static_cast<std::size_t>(c)])];
+      const Eigen::Vector3d bone =
+          (wc.topRightCorner<3, 1>() - wj.topRightCorner<3, 1>()).normalized();
+      worst = std::max(worst, std::acos(std::min(1.0, axis.dot(bone))) * 180.0 / 3.14159265358979);
+    }
+    INFO("rest pose " << (pose == body::RestPose::t ? "T" : "model") << ": worst bone-to-child "
+                      << worst << " degrees");
+    CHECK(worst < 0.01);
+    // The main chains: pelvis -> spine1, spine3 -> neck, left_elbow -> left_wrist.
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[0])] == "spine1");
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[9])] == "neck");
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[18])] == "left_wrist");
+    CHECK(targets[22] == -1);  // left_hand: a leaf
+  }
+}
+
+TEST_CASE("gltf: T-pose puts the arms horizontal, with the model's skinning", "[gltf][rig]") {
+  const body::Model model = body::load_default_model(10);
+  const auto betas = some_betas(10);
+  auto shaped = body::evaluate(model, betas);
+  const auto posed = body::t_posed(model, shaped);
+  for (const std::string side : {"left", "right"}) {
+    auto index = [&](const std::string& n) {
+      return static_cast<int>(
+          std::find(model.joint_names.begin(), model.joint_names.end(), side + n) -
+          model.joint_names.begin());
+    };
+    const int s = index("_shoulder"), e = index("_elbow"), w = index("_wrist");
+    const Eigen::Vector3f upper = (posed.joints.row(e) - posed.joints.row(s)).transpose();
+    const Eigen::Vector3f fore = (posed.joints.row(w) - posed.joints.row(e)).transpose();
+    INFO(side << " upper arm " << upper.transpose() << ", forearm " << fore.transpose());
+    CHECK(std::abs(upper.normalized().x()) > 0.9999f);
+    CHECK(std::abs(fore.normalized().x()) > 0.9999f);
+    CHECK(upper.x() * fore.x() > 0.0f);
+    CHECK((side == "left") == (upper.x() > 0.0f));  // SMPL's left is +x
+    // Bone lengths are kept (rigid rotations).
+    CHECK(upper.norm() ==
+          Approx((shaped.joints.row(e) - shaped.joints.row(s)).norm()).epsilon(1e-5));
+  }
+  // The legs and spine do not move (only the arms turn); feet stay on the ground.
+  CHECK(posed.vertices.col(1).minCoeff() == Approx(0.0).margin(1e-6));
+  body::place_on_ground(shaped);
+  CHECK((posed.joints.row(4) - shaped.joints.row(4)).norm() < 1e-5f);
+  // The export in T-pose holds that mesh; its morph targets are the posed shape changes.
+  body::ExportOptions opt;
+  opt.rest_pose = body::RestPose::t;
+  opt.morph_encoding = body::MorphEncoding::betas;
+  const auto path = fixtures::scratch_dir("gltf-tpose") / "t.glb";
+  body::export_gltf(model, betas, path, opt);
+  const auto doc = read_back(path);
+  const auto& prim = doc.meshes.at(0).primitives.at(0);
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  CHECK(max_vertex_error(base, posed.vertices) < 1e-5f);
+  // Target 2 = the same rotations applied to the body with beta_2 + 1, minus the design.
+  const body::Rotations local = body::t_pose_rotations(model, body::evaluate(model, betas).joints);
+  const body::Skinning skin(model, local);
+  Eigen::VectorXf b2 = betas;
+  b2[2] += 1.0f;
+  const auto s1 = body::evaluate(model, betas), s2 = body::evaluate(model, b2);
+  const body::Vertices expect =
+      skin.vertices(s2.vertices, s2.joints) - skin.vertices(s1.vertices, s1.joints);
+  const auto t2 = accessor_data<float>(doc, prim.targets.at(2).at("POSITION"), 3);
+  CHECK(max_vertex_error(t2, expect) < 1e-5f);
+  CHECK_THAT(doc.nodes.at(0).extras.Get("rest_pose").Get<std::string>(), Contains("T"));
+  // The skinning of the rest pose itself: identity rotations change nothing.
+  const body::Skinning rest(model, body::Rotations(24, Eigen::Matrix3f::Identity()));
+  CHECK((rest.vertices(s1.vertices, s1.joints) - s1.vertices).cwiseAbs().maxCoeff() < 1e-6f);
+}
+
+TEST_CASE("gltf: T-pose applies SMPL-layout pose correctives, skips other layouts", "[gltf][rig]") {
+  fixtures::Cylinder c;
+  c.pose_columns = 9 * 23;  // SMPL: 207
+  const auto with = family_model(c, "smpl-posedirs", 10);
+  c.pose_columns = 0;
+  const auto without = family_model(c, "smpl-plain", 10);
+  c.pose_columns = 93;  // STAR's quaternion layout: not applied
+  const auto star = family_model(c, "star", 10);
+  REQUIRE(with.posedirs.cols() == 207);
+  REQUIRE(star.posedirs.cols() == 93);
+  const auto betas = some_betas(10);
+  bool used = false;
+  const auto shaped = body::evaluate(with, betas);
+  const auto a = body::t_posed(with, shaped, &used);
+  CHECK(used);
+  const auto b = body::t_posed(without, body::evaluate(without, betas), &used);
+  CHECK_FALSE(used);
+  const auto s = body::t_posed(star, body::evaluate(star, betas), &used);
+  CHECK_FALSE(used);
+  CHECK((s.vertices - b.vertices).cwiseAbs().maxCoeff() < 1e-6f);
+  // The fixture's corrective column 135 is R(0,0) - 1 of the left shoulder, times 0.05 m on y
+  // for every vertex: the posed difference is the skinning of exactly that offset.
+  const body::Rotations local = body::t_pose_rotations(with, shaped.joints);
+  const float feature = local[16](0, 0) - 1.0f;
+  REQUIRE(std::abs(feature) > 0.1f);
+  body::Vertices offset = body::Vertices::Zero(with.vertex_count(), 3);
+  offset.col(1).setConstant(0.05f * feature);
+  const body::Skinning skin(with, local);
+  const body::Vertices zero_joints = body::Vertices::Zero(with.joint_count(), 3);
+  body::Vertices expect = b.vertices + skin.vertices(offset, zero_joints);
+  expect.col(1).array() -= expect.col(1).minCoeff();  // both are grounded
+  CHECK((a.vertices - expect).cwiseAbs().maxCoeff() < 1e-5f);
+  CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() > 1e-3f);
+  CHECK(star.joint_names[16] == "left_shoulder");  // STAR uses SMPL's names
+}
+
+TEST_CASE("loader: SMPL+H and SMPL-X joint names built in; SMPL-X shape and expressions apart",
+          "[gltf][family]") {
+  fixtures::Cylinder c;
+  c.joints = 52;
+  c.components = 16;
+  const auto smplh = family_model(c, "smplh");
+  REQUIRE(smplh.joint_count() == 52);
+  CHECK(smplh.joint_names[21] == "right_wrist");
+  CHECK(smplh.joint_names[22] == "left_index1");
+  CHECK(smplh.joint_names[36] == "left_thumb3");
+  CHECK(smplh.joint_names[37] == "right_index1");
+  CHECK(smplh.joint_names[51] == "right_thumb3");
+  CHECK(smplh.parents[22] == 20);  // the fixture's hierarchy: fingers on the wrists
+  CHECK(smplh.total_components == 16);
+  CHECK(smplh.total_expressions == 0);
+
+  c.joints = 55;
+  c.components = 20;  // SMPL-X v1.0 layout: 10 shape + 10 expression
+  const auto smplx = family_model(c, "smplx", 0, 4);
+  REQUIRE(smplx.joint_count() == 55);
+  CHECK(smplx.joint_names[22] == "jaw");
+  CHECK(smplx.joint_names[23] == "left_eye_smplhf");
+  CHECK(smplx.joint_names[24] == "right_eye_smplhf");
+  CHECK(smplx.joint_names[25] == "left_index1");
+  CHECK(smplx.joint_names[54] == "right_thumb3");
+  CHECK(smplx.total_components == 10);
+  CHECK(smplx.component_count() == 10);  // "all" = all shape components, no expressions
+  CHECK(smplx.total_expressions == 10);
+  REQUIRE(smplx.expression_dirs.cols() == 4);
+  // Expression e is column 10 + e of the file's shapedirs (fixture: 0.002 sin(0.7 k (v+1) + a)).
+  CHECK(smplx.expression_dirs(3 * 7 + 1, 2) ==
+        Approx(0.002 * std::sin(0.7 * 12 * 8 + 1)).margin(1e-7));
+  CHECK(smplx.shapedirs(3 * 7 + 1, 9) == Approx(0.002 * std::sin(0.7 * 9 * 8 + 1)).margin(1e-7));
+  CHECK(body::load_model(smplx.source, 0, 0).expression_dirs.cols() == 0);
+  // A file with 400 columns and 55 joints is SMPL-X v1.1: 300 shape, 100 expressions.
+  c.components = 400;
+  c.rings = 5;
+  c.segments = 4;
+  const auto v11 = family_model(c, "smplx-v11", 0, 100);
+  CHECK(v11.total_components == 300);
+  CHECK(v11.total_expressions == 100);
+  CHECK(v11.expression_dirs.cols() == 100);
+
+  body::ExportOptions opt;
+  opt.morph_encoding = body::MorphEncoding::betas;
+  const auto path = fixtures::scratch_dir("gltf-smplx") / "x.gltf";
+  body::export_gltf(smplx, some_betas(10), path, opt);
+  const auto doc = read_back(path);
+  const auto& gm = doc.meshes.at(0);
+  REQUIRE(gm.primitives.at(0).targets.size() == 14);
+  CHECK(gm.extras.Get("targetNames").Get(9).Get<std::string>() == "shape_09");
+  CHECK(gm.extras.Get("targetNames").Get(13).Get<std::string>() == "expr_03");
+  CHECK(joint_node(doc, 22).name == "jaw");
+  CHECK(joint_node(doc, 54).name == "right_thumb3");
+  // expr_01 at weight 1 is the body with expression 1 added.
+  const auto& prim = gm.primitives.at(0);
+  auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  const auto d = accessor_data<float>(doc, prim.targets.at(11).at("POSITION"), 3);
+  for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += d[i];
+  auto mesh = body::evaluate(smplx, some_betas(10));
+  body::place_on_ground(mesh);
+  Eigen::Map<Eigen::VectorXf>(mesh.vertices.data(), mesh.vertices.size()) +=
+      smplx.expression_dirs.col(1);
+  CHECK(max_vertex_error(pos, mesh.vertices) < 1e-5f);
+}
+
+TEST_CASE("gltf: UVs from vt/ft, vertices split along the seam", "[gltf][family]") {
+  fixtures::Cylinder c;
+  c.uvs = true;
+  const auto model = family_model(c, "uv", 10);
+  REQUIRE(model.uvs.rows() == (c.segments + 1) * c.rings + 2);
+  const auto path = fixtures::scratch_dir("gltf-uv") / "uv.glb";
+  body::export_gltf(model, some_betas(10), path);
+  const auto doc = read_back(path);
+  const auto& prim = doc.meshes.at(0).primitives.at(0);
+  REQUIRE(prim.attributes.count("TEXCOORD_0") == 1);
+  const auto uv = accessor_data<float>(doc, prim.attributes.at("TEXCOORD_0"), 2);
+  const auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  const std::size_t n = uv.size() / 2;
+  // One extra vertex per ring on the seam (u = 0 and u = 1 at the same place).
+  CHECK(n == static_cast<std::size_t>(model.vertex_count() + c.rings));
+  const auto idx = accessor_data<std::uint32_t>(doc, prim.indices, 1);
+  REQUIRE(idx.size() == static_cast<std::size_t>(model.faces.size()));
+  // Every corner: same position as the model's vertex, the file's (u, 1 - v).
+  auto mesh = body::evaluate(model, some_betas(10));
+  body::place_on_ground(mesh);
+  float worst_pos = 0.0f, worst_uv = 0.0f;
+  for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t o = idx[static_cast<std::size_t>(3 * f + k)];
+      const auto v = model.faces(f, k);
+      const auto t = model.uv_faces(f, k);
+      for (int a = 0; a < 3; ++a) {
+        worst_pos = std::max(
+            worst_pos, std::abs(pos[3 * o + static_cast<std::size_t>(a)] - mesh.vertices(v, a)));
+      }
+      worst_uv = std::max(worst_uv, std::abs(uv[2 * o] - model.uvs(t, 0)));
+      worst_uv = std::max(worst_uv, std::abs(uv[2 * o + 1] - (1.0f - model.uvs(t, 1))));
+    }
+  }
+  CHECK(worst_pos < 1e-5f);
+  CHECK(worst_uv < 1e-7f);
+  // Morph targets and skin attributes have the same (split) vertex count.
+  CHECK(doc.accessors.at(static_cast<std::size_t>(prim.targets.at(0).at("POSITION"))).count == n);
+  CHECK(doc.accessors.at(static_cast<std::size_t>(prim.attributes.at("WEIGHTS_0"))).count == n);
+}
+
+TEST_CASE("gltf: .vrm holds VRMC_vrm with meta and the humanoid bone map", "[gltf][vrm]") {
+  const body::Model model = body::load_default_model(10);
+  const auto path = fixtures::scratch_dir("gltf-vrm") / "avatar.vrm";
+  body::ExportOptions opt;
+  opt.vrm.authors = {"A. Designer"};
+  opt.vrm.name = "Test avatar";
+  body::export_gltf(model, some_betas(10), path, opt);
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model doc;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&doc, &err, &warn, path.string()));
+  REQUIRE(std::find(doc.extensionsUsed.begin(), doc.extensionsUsed.end(), "VRMC_vrm") !=
+          doc.extensionsUsed.end());
+  const auto& vrm = doc.extensions.at("VRMC_vrm");
+  CHECK(vrm.Get("specVersion").Get<std::string>() == "1.0");
+  CHECK(vrm.Get("meta").Get("name").Get<std::string>() == "Test avatar");
+  CHECK(vrm.Get("meta").Get("authors").Get(0).Get<std::string>() == "A. Designer");
+  CHECK(vrm.Get("meta").Get("licenseUrl").Get<std::string>() == "https://vrm.dev/licenses/1.0/");
+  const auto& bones = vrm.Get("humanoid").Get("humanBones");
+  const std::vector<std::pair<std::string, std::string>> expect = {
+      {"hips", "pelvis"},
+      {"spine", "spine1"},
+      {"chest", "spine2"},
+      {"upperChest", "spine3"},
+      {"neck", "neck"},
+      {"head", "head"},
+      {"leftShoulder", "left_collar"},
+      {"leftUpperArm", "left_shoulder"},
+      {"leftLowerArm", "left_elbow"},
+      {"leftHand", "left_wrist"},
+      {"rightUpperLeg", "right_hip"},
+      {"rightLowerLeg", "right_knee"},
+      {"rightFoot", "right_ankle"},
+      {"rightToes", "right_foot"}};
+  for (const auto& [role, joint] : expect) {
+    INFO(role);
+    REQUIRE(bones.Has(role));
+    CHECK(
+        doc.nodes.at(static_cast<std::size_t>(bones.Get(role).Get("node").GetNumberAsInt())).name ==
+        joint);
+  }
+  CHECK_FALSE(bones.Has("leftThumbProximal"));  // no fingers in a 24-joint skeleton
+  // T-pose: the left hand lies level with the left shoulder, out on +x.
+  const auto world = world_matrices(doc);
+  const auto node_of = [&](const char* role) {
+    return static_cast<std::size_t>(bones.Get(role).Get("node").GetNumberAsInt());
+  };
+  const auto& sh = world.at(node_of("leftUpperArm"));
+  const auto& hand = world.at(node_of("leftHand"));
+  CHECK(hand(1, 3) == Approx(sh(1, 3)).margin(1e-4));
+  CHECK(hand(0, 3) > sh(0, 3) + 0.3);
+
+  // A skeleton without the humanoid joints cannot be a VRM; a .vrm cannot be A-posed.
+  const auto other = cylinder(5, 4);
+  CHECK_THROWS_WITH(body::export_gltf(other, some_betas(4), path.parent_path() / "x.vrm"),
+                    Contains("x.vrm") && Contains("T-pose needs"));
+  opt.rest_pose = body::RestPose::model;
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt), Contains("T-pose"));
+  opt.rest_pose = body::RestPose::automatic;
+  opt.vrm.commercial_usage = "free";
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt),
+                    Contains("commercialUsage") && Contains("'free'"));
+}
+
+TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
+  REQUIRE(body::export_presets().size() == 5);
+  for (const char* name : {"blender", "unity", "unreal", "threejs", "vrm"}) {
+    INFO(name);
+    CHECK(body::find_export_preset(name).has_value());
+  }
+  CHECK_FALSE(body::find_export_preset("maya").has_value());
+  CHECK(body::find_export_preset("vrm")->extension == ".vrm");
+  CHECK(body::find_export_preset("threejs")->options.morph_encoding == body::MorphEncoding::betas);
+  CHECK(body::find_export_preset("unity")->options.rest_pose == body::RestPose::t);
+  CHECK(body::find_export_preset("blender")->options.rest_pose == body::RestPose::model);
+  const body::Model model = body::load_default_model(10);
+  const auto path = fixtures::scratch_dir("gltf-presets") / "unity.glb";
+  body::export_gltf(model, some_betas(10), path, body::find_export_preset("unity")->options);
+  const auto doc = read_back(path);
+  CHECK(joint_node(doc, 0).name == "hips");
+  CHECK(joint_node(doc, 16).name == "leftUpperArm");
+  CHECK(joint_node(doc, 22).name == "left_hand");  // no humanoid role: the model's name
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env node
 // Loads an exported .glb/.vrm with three.js (GLTFLoader, and @pixiv/three-vrm for .vrm) the
 // way a web app would, and checks what a rigger relies on. Exit 1 on any failed check.
-// usage: node check_export.mjs FILE --height H [--joints N] [--targets N] [--vrm]
-//        [--bone NAME]...   (bone names that must exist)
+// usage: node check_export.mjs FILE --height H [--joints N] [--targets N] [--vrm] [--uv]
+//        [--bone NAME]... [--target NAME]...   (bones and morph targets that must exist)
+//        [--no-geometry]    (a test fixture, not a body: skip the T-pose and facing checks)
 import fs from 'node:fs';
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
@@ -13,7 +14,9 @@ const opt = (name) => {
   const i = args.indexOf('--' + name);
   return i < 0 ? undefined : args[i + 1];
 };
+const geometry = !args.includes('--no-geometry');
 const bones_wanted = args.flatMap((a, i) => (a === '--bone' ? [args[i + 1]] : []));
+const targets_wanted = args.flatMap((a, i) => (a === '--target' ? [args[i + 1]] : []));
 let failures = 0;
 const check = (ok, what) => {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
@@ -46,6 +49,12 @@ for (const name of bones_wanted) {
   check(bones.some((b) => b.name === name), `bone '${name}' present`);
 }
 
+if (args.includes('--uv')) {
+  const uv = mesh.geometry.attributes.uv;
+  check(uv !== undefined && uv.count === mesh.geometry.attributes.position.count,
+        'texture coordinates (TEXCOORD_0) on every vertex');
+}
+
 // Morph dictionary: the expected count, every influence at 0 (the base mesh is the design).
 const dict = mesh.morphTargetDictionary || {};
 const influences = mesh.morphTargetInfluences || [];
@@ -53,6 +62,7 @@ if (opt('targets')) {
   check(Object.keys(dict).length === Number(opt('targets')), `morph targets = ${opt('targets')}`);
 }
 check(influences.every((w) => w === 0), 'every morph influence is 0 by default');
+for (const name of targets_wanted) check(name in dict, `morph target '${name}' present`);
 
 // Height of the skinned mesh at zero weights (skeleton and mesh agree: bind pose = identity).
 const skinned_height = () => {
@@ -83,6 +93,7 @@ for (const b of bones) {
   if (kids.length !== 1) continue;
   b.getWorldPosition(p);
   kids[0].getWorldPosition(c);
+  if (c.distanceTo(p) < 1e-6) continue;  // coincident joints: no direction to check
   const dir = c.sub(p).normalize();
   axis.set(0, 1, 0).transformDirection(b.matrixWorld);
   const deg = THREE.MathUtils.radToDeg(Math.acos(Math.min(1, axis.dot(dir))));
@@ -121,10 +132,23 @@ if (vrm_mode) {
       leftToes: 'left_foot', rightUpperLeg: 'right_hip', rightLowerLeg: 'right_knee',
       rightFoot: 'right_ankle', rightToes: 'right_foot',
     };
+    // SMPL+H / SMPL-X: fingers (thumb1 is VRM's metacarpal), SMPL-X: jaw and eyes.
+    if (bones.some((b) => b.name === 'left_index1')) {
+      Object.assign(expect, {
+        leftIndexProximal: 'left_index1', leftIndexDistal: 'left_index3',
+        leftThumbMetacarpal: 'left_thumb1', rightLittleIntermediate: 'right_pinky2',
+        rightRingProximal: 'right_ring1', rightMiddleDistal: 'right_middle3',
+      });
+    }
+    if (bones.some((b) => b.name === 'jaw')) {
+      Object.assign(expect, { jaw: 'jaw', leftEye: 'left_eye_smplhf', rightEye: 'right_eye_smplhf' });
+    }
     for (const [role, joint] of Object.entries(expect)) {
       const node = vrm.humanoid.getRawBoneNode(role);
       check(node && node.name === joint, `humanoid ${role} = ${joint}`);
     }
+  }
+  if (vrm && geometry) {
     // T-pose: hands level with the upper arms, out to the sides; facing +Z (toes in front).
     const wp = (role) => vrm.humanoid.getRawBoneNode(role).getWorldPosition(new THREE.Vector3());
     for (const side of ['left', 'right']) {

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # ctest threejs_export: exports loaded by three.js in node (npm three, @pixiv/three-vrm) as a
 # web app would: bones, morph dictionary, zero-weight height = `measure`, the VRM humanoid.
-# usage: threejs_test.sh SEQUENTIAL_GALLERY WORK_DIR
+# usage: threejs_test.sh SEQUENTIAL_GALLERY FIXTURE_WRITER WORK_DIR
 set -euo pipefail
-exe=$1 dir=$2
+exe=$1 writer=$2 dir=$3
 here=$(cd "$(dirname "$0")" && pwd)
 fail() { echo "FAIL: $*" >&2; exit 1; }
 command -v node >/dev/null || fail "node is not installed (bash tools/setup.sh --test)"
@@ -33,4 +33,17 @@ node "$here/check_export.mjs" "$dir/unity.glb" --joints 24 --targets 20 --height
   --bone hips --bone leftUpperArm --bone left_hand
 "$exe" export --betas $betas --preset vrm -o "$dir/avatar.vrm" >/dev/null
 node "$here/check_export.mjs" "$dir/avatar.vrm" --vrm --joints 24 --targets 20 --height "$height"
+
+# SMPL+H and SMPL-X look-alikes (cylinders with their joint names, hierarchy, UVs, SMPL-X's
+# 10 shape + 10 expression columns): names, humanoid fingers, UVs, the shape/expression split.
+for family in smplh smplx; do
+  "$writer" "$dir/$family.npz" "$family"
+  h=$("$exe" measure --model "$dir/$family.npz" | awk '/^height/ {print $2}')
+  if [ $family = smplh ]; then joints=52 targets=20 extra=(); else joints=55 targets=23 extra=(--expressions 3); fi
+  "$exe" export --model "$dir/$family.npz" "${extra[@]}" --preset vrm -o "$dir/$family.vrm" >/dev/null
+  node "$here/check_export.mjs" "$dir/$family.vrm" --vrm --no-geometry --uv --joints $joints \
+    --targets $targets --height "$h" --bone left_index1 --bone right_thumb3
+done
+node "$here/check_export.mjs" "$dir/smplx.vrm" --vrm --no-geometry --bone jaw --bone left_eye_smplhf \
+  --target shape_09_neg --target expr_02
 echo "threejs_export: all checks passed"
