@@ -177,7 +177,7 @@ TEST_CASE("expert sliders: Use this makes the point the current best, preferred 
   CHECK(c.session().clicks_on_plane() == 0);
 }
 
-TEST_CASE("a resumable session waits for the answer; other intents are ignored", "[gallery]") {
+TEST_CASE("a resumable session waits for the answer, other intents are ignored", "[gallery]") {
   TempDir dir;
   const fs::path session = dir.path / "s.json";
   {
@@ -367,7 +367,7 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
   ImGui::DestroyContext();
 }
 
-TEST_CASE("the window's remembered settings round-trip; a broken file means defaults",
+TEST_CASE("the window's remembered settings round-trip, a broken file means defaults",
           "[gallery]") {
   TempDir dir;
   const fs::path path = app::ui_prefs_path(dir.path / "session.json");
@@ -449,7 +449,7 @@ struct InProcessWindow {
 
 }  // namespace
 
-TEST_CASE("a double-click on a cell is one zoom step; hovering shows the cell", "[gallery][gl]") {
+TEST_CASE("a double-click on a cell is one zoom step, hovering shows the cell", "[gallery][gl]") {
   TempDir dir;
   auto o = options(dir.path / "s.json", "body");
   o.zoom_seconds = 0.01;  // the zoom is over long before the second click
