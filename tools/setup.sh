@@ -13,6 +13,12 @@ packages=(
   python3-numpy nodejs npm
 )
 
+# The fuzz smoke run (tools/fuzz.sh, part of the test suite) needs clang and its libFuzzer /
+# sanitizer runtimes.
+if [ "${1:-}" = "--test" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   # NodeSource's nodejs bundles npm and conflicts with Debian's npm package.

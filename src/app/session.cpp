@@ -156,9 +156,18 @@ bool Session::undo_click() {
   }
   if (history_.empty() || !search_.undo()) return false;
   path_ = history_.back().path;
-  path_.pop_back();
+  if (!path_.empty()) path_.pop_back();  // a point set by sliders has no clicks
   history_.pop_back();
   return true;
+}
+
+void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search) {
+  if (chosen.size() != settings_.components) {
+    throw std::invalid_argument("adopt_point: the point has the wrong dimension");
+  }
+  history_.push_back({chosen, {}});
+  search_ = std::move(updated_search);
+  path_.clear();
 }
 
 bool Session::undo_plane() {
@@ -189,7 +198,8 @@ std::string Session::to_json() const {
   json j;
   j["format"] = "sequential-gallery-session";
   j["version"] = 1;
-  j["settings"] = {{"model_path", settings_.model_path},
+  j["settings"] = {{"space", settings_.space},
+                   {"model_path", settings_.model_path},
                    {"components", settings_.components},
                    {"grid_size", settings_.grid_size},
                    {"zoom_levels", settings_.zoom_levels},
@@ -224,6 +234,7 @@ Session Session::from_json(const std::string& text) {
     // Every setting is checked before anything is sized by it.
     const auto& s = j.at("settings");
     SessionSettings settings;
+    settings.space = s.value("space", "body");  // files from before photos were bodies
     settings.model_path = s.at("model_path").get<std::string>();
     settings.components =
         static_cast<int>(integer_from(s.at("components"), "components", 1, sps::kMaxSearchDims));
@@ -253,6 +264,12 @@ Session Session::from_json(const std::string& text) {
       HistoryEntry entry;
       entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
       entry.path = path_from(h.at("path"), n, "history path");
+      // Undo reopens a finished plane with its clicks minus the last: each finished plane has
+      // exactly one click per zoom level.
+      if (static_cast<int>(entry.path.size()) != settings.zoom_levels) {
+        throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
+                                 " clicks, expected " + std::to_string(settings.zoom_levels));
+      }
       session.history_.push_back(std::move(entry));
     }
     if (static_cast<int>(session.history_.size()) != session.search_.iteration()) {

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "util/utf8.hpp"
+
 namespace cli {
 
 namespace {
@@ -122,6 +124,14 @@ std::string ArgParser::require(const std::string& name) const {
   const auto value = get(name);
   if (!value) throw ArgError("missing required option --" + name);
   return *value;
+}
+
+std::string ArgParser::get_text(const std::string& name, const std::string& fallback) const {
+  const std::string value = get_or(name, fallback);
+  if (!util::is_valid_utf8(value)) {
+    throw ArgError("--" + name + ": the text is not valid UTF-8 (check the terminal's encoding)");
+  }
+  return value;
 }
 
 int ArgParser::get_int(const std::string& name, int fallback) const {

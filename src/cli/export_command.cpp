@@ -153,10 +153,10 @@ int run(int argc_in, char** argv_in) {
   if (args.has("no-morph")) options.morph_targets = false;
   if (args.has("morph-betas")) options.morph_encoding = body::MorphEncoding::betas;
   body::VrmMeta& meta = options.vrm;
-  meta.name = args.get_or("vrm-name", meta.name);
-  meta.version = args.get_or("vrm-version", meta.version);
-  if (const auto a = args.get("vrm-authors")) meta.authors = split_authors(*a);
-  meta.license_url = args.get_or("vrm-license-url", meta.license_url);
+  meta.name = args.get_text("vrm-name", meta.name);
+  meta.version = args.get_text("vrm-version", meta.version);
+  if (args.has("vrm-authors")) meta.authors = split_authors(args.get_text("vrm-authors", ""));
+  meta.license_url = args.get_text("vrm-license-url", meta.license_url);
   meta.avatar_permission =
       choice(args, "vrm-avatar-permission",
              {"onlyAuthor", "onlySeparatelyLicensedPerson", "everyone"}, meta.avatar_permission);

@@ -71,7 +71,14 @@ int main(int argc, char** argv) {
               << " (this is a bug; please report it with the command line)\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "sequential-gallery: error: " << e.what() << "\n";
+    const std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0) {
+      // nlohmann::json's own message: an input that the checks before it should have caught.
+      std::cerr << "sequential-gallery: internal error: unexpected JSON library error: " << what
+                << " (this is a bug; please report it with the command line)\n";
+    } else {
+      std::cerr << "sequential-gallery: error: " << what << "\n";
+    }
     return 1;
   }
 }

@@ -3,7 +3,6 @@
 #include <iostream>
 #include <string>
 
-#include "app/body_scene.hpp"
 #include "body/model_loader.hpp"
 #include "body/posing.hpp"
 #include "cli/arg_parser.hpp"
@@ -11,6 +10,7 @@
 #include "cli/command_registry.hpp"
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
+#include "spaces/body_scene.hpp"
 
 namespace {
 
@@ -63,14 +63,14 @@ int run(int argc, char** argv_in) {
   betas.head(given.size()) = given;
 
   render::HeadlessContext context;
-  auto mesh = app::body_from_betas(model, betas);
+  auto mesh = spaces::body_from_betas(model, betas);
   const std::string pose = args.get_or("rest-pose", "a");
   if (pose != "a" && pose != "t") {
     throw cli::ArgError("render: --rest-pose must be a or t, got '" + pose + "'");
   }
   if (pose == "t") mesh = body::t_posed(model, mesh);
   const auto pixels =
-      app::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
+      spaces::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
   render::write_png(*out, width, height, pixels);
   std::cout << "wrote " << *out << " (" << width << "x" << height << ", " << model.name << ", "
             << render::view_preset_name(*preset) << " view, " << context.renderer() << ")\n";

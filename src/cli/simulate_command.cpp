@@ -12,8 +12,8 @@
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "sps/plane_search.hpp"
-#include "sps/simulated_user.hpp"
-#include "sps/test_functions.hpp"
+#include "testing/simulated_user.hpp"
+#include "testing/test_functions.hpp"
 #include "util/atomic_file.hpp"
 
 namespace {

@@ -239,8 +239,32 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
     data_.add_preference(comparison.front(),
                          std::vector<Eigen::VectorXd>(comparison.begin() + 1, comparison.end()));
   }
-  model_ = std::make_shared<PreferenceModel>(PreferenceModel::fit(data_, options_.model, *model_));
-  propose_next_plane(x);
+  try {
+    model_ =
+        std::make_shared<PreferenceModel>(PreferenceModel::fit(data_, options_.model, *model_));
+    propose_next_plane(x);
+    // Never keep a state that could not be saved and read back (from_json's limits): go back
+    // to the state before this submission instead.
+    const KernelParams& p = model_->params();
+    const auto in = [](double v, double lo, double hi) {
+      return std::isfinite(v) && v >= lo && v <= hi;
+    };
+    bool ok =
+        in(p.amplitude, kMinHyper, kMaxHyper) && model_->latent().allFinite() &&
+        (model_->latent().size() == 0 || model_->latent().cwiseAbs().maxCoeff() <= kMaxLatent) &&
+        plane_.c.allFinite() && plane_.u.allFinite() && plane_.v.allFinite() &&
+        plane_.c.minCoeff() >= 0.0 && plane_.c.maxCoeff() <= 1.0 &&
+        plane_.u.cwiseAbs().maxCoeff() <= kMaxPlaneExtent &&
+        (plane_.v.size() == 0 || plane_.v.cwiseAbs().maxCoeff() <= kMaxPlaneExtent) &&
+        in(plane_.u_neg_scale, 0.0, 1.0);
+    for (Eigen::Index i = 0; ok && i < p.length_scales.size(); ++i) {
+      ok = in(p.length_scales[i], kMinHyper, kMaxHyper);
+    }
+    if (!ok) throw std::runtime_error("the optimizer produced non-finite or absurd values");
+  } catch (...) {
+    undo();
+    throw;
+  }
   last_submit_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -336,3 +336,21 @@ TEST_CASE("saving keeps the last good file when the new one cannot be written",
   REQUIRE_NOTHROW(app::save_session(odd_session, file));
   CHECK(app::load_session(file).session.has_value());
 }
+
+TEST_CASE("a session that would not read back is never written; the last good file stays",
+          "[app][session-file]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  app::Session session(small_settings());
+  app::save_session(session, file);
+  const std::string good = read_text(file);
+  // A search of another dimension than the session's components: to_json works, from_json
+  // refuses it -- so save_session must refuse too and leave the good file alone.
+  sps::SearchOptions other;
+  other.dims = small_settings().components + 1;
+  for (const auto& c : std::vector<sps::GridCell>{{0, 0}, {1, 1}, {2, 2}, {1, 0}}) session.click(c);
+  session.finish_plane(sps::PlaneSearch(other));
+  CHECK_THROWS_WITH(app::save_session(session, file),
+                    Catch::Contains("did not save") && Catch::Contains("kept the last good file"));
+  CHECK(test_support::first_difference(read_text(file), good) == "");
+}

@@ -77,6 +77,12 @@ std::vector<SessionFixture> broken_session_fixtures() {
   add("history-length-mismatch", "history length",
       [](json& j) { j["history"].erase(j["history"].begin()); });
   add("path-cell-outside-grid", "path", [](json& j) { j["path"][0] = json::array({7, 0}); });
+  // Undo of a finished plane whose stored path is empty popped an empty vector.
+  add("history-path-empty", "history path has 0 clicks",
+      [](json& j) { j["history"][1]["path"] = json::array(); });
+  add("history-path-too-long", "history path has 5 clicks", [](json& j) {
+    j["history"][0]["path"].push_back(json::array({1, 1}));
+  });
   add("start-point-string", "start_point", [](json& j) { j["start_point"][0] = "half"; });
   add("wrong-format", "not a sequential-gallery session",
       [](json& j) { j["format"] = "something else"; });

@@ -39,6 +39,17 @@ for expected_file in "$dir"/*.expected; do
   fi
 done
 
+# A valid session whose model is gone: the window could not resume it either.
+sed 's#"model_path": ""#"model_path": "/nonexistent/model.npz"#' "$dir/good.json" >"$dir/no-model.json"
+out=$("$tool" session-info "$dir/no-model.json" 2>&1)
+rc=$?
+if [ $rc -ne 1 ] || ! grep -q "cannot load its body model.*nonexistent/model.npz" <<<"$out"; then
+  echo "FAIL: session without its model: exit $rc: $out"
+  failures=$((failures + 1))
+else
+  echo "ok: session without its model: $(tail -1 <<<"$out")"
+fi
+
 # Not a session at all: a folder, a missing file, an endless device.
 for bad in "$dir" "$dir/missing.json" /dev/zero; do
   out=$("$tool" session-info "$bad" 2>&1)

@@ -122,5 +122,7 @@ refuse "--components 1000000000: .* has only 10" \
   "$exe" measure --model "$dir/cyl.npz" --components 1000000000
 refuse "/dev/zero: not a regular file" "$exe" inspect --model /dev/zero
 refuse "/dev/zero: not a regular file" "$exe" measure --model /dev/zero
+refuse "--vrm-name: the text is not valid UTF-8" \
+  "$exe" export --model "$dir/cyl.npz" --vrm-name $'caf\xe9' -o "$dir/latin1.vrm"
 out=$("$exe" measure --model "$dir/cyl.npz" --betas 1e-320) || fail "--betas 1e-320 refused: $out"
 echo "body_cli: all checks passed"
