@@ -337,7 +337,7 @@ TEST_CASE("saving keeps the last good file when the new one cannot be written",
   CHECK(app::load_session(file).session.has_value());
 }
 
-TEST_CASE("a session that would not read back is never written; the last good file stays",
+TEST_CASE("a session that would not read back is never written, and the last good file stays",
           "[app][session-file]") {
   TempDir dir;
   const fs::path file = dir.path / "session.json";

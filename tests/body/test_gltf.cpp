@@ -131,7 +131,7 @@ const tinygltf::Node& joint_node(const tinygltf::Model& doc, int j) {
 
 }  // namespace
 
-TEST_CASE("gltf: the base mesh is the design; one morph target per component edits it", "[gltf]") {
+TEST_CASE("gltf: the base mesh is the design, and one morph target per component edits it", "[gltf]") {
   const auto model = cylinder();
   const auto betas = some_betas(10);
   const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
@@ -542,7 +542,7 @@ TEST_CASE("gltf: T-pose applies SMPL-layout pose correctives, skips other layout
   CHECK(star.joint_names[16] == "left_shoulder");  // STAR uses SMPL's names
 }
 
-TEST_CASE("loader: SMPL+H and SMPL-X joint names built in; SMPL-X shape and expressions apart",
+TEST_CASE("loader: SMPL+H and SMPL-X joint names built in, and SMPL-X shape and expressions apart",
           "[gltf][family]") {
   fixtures::Cylinder c;
   c.joints = 52;

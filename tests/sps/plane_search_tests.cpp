@@ -121,7 +121,7 @@ TEST_CASE("corrupt state text is reported, not crashed on", "[search][json]") {
   CHECK_THROWS_AS(sps::PlaneSearch::from_json(text), std::runtime_error);
 }
 
-TEST_CASE("undo returns to the previous plane; start over discards the data", "[search]") {
+TEST_CASE("undo returns to the previous plane, and start over discards the data", "[search]") {
   const auto g = sps::make_test_function("gaussian", 3);
   sps::PlaneSearch s(options(3, 5));
   const sps::Plane first = s.current_plane();
