@@ -264,12 +264,13 @@ Session Session::from_json(const std::string& text) {
       HistoryEntry entry;
       entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
       entry.path = path_from(h.at("path"), n, "history path");
-      // Undo reopens a finished plane with its clicks minus the last: a plane finished by
-      // clicking has one click per zoom level; a point set with the sliders has none.
+      // Undo reopens a finished plane with its clicks minus the last: each finished plane has
+      // exactly one click per zoom level, or none when the point was set with the expert
+      // sliders (adopt_point).
       if (!entry.path.empty() && static_cast<int>(entry.path.size()) != settings.zoom_levels) {
         throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
                                  " clicks, expected " + std::to_string(settings.zoom_levels) +
-                                 " (or none for a point set with the sliders)");
+                                 " (or none)");
       }
       session.history_.push_back(std::move(entry));
     }

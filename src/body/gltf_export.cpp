@@ -23,6 +23,7 @@
 #include "body/joint_names.hpp"
 #include "body/mesh_normals.hpp"
 #include "body/posing.hpp"
+#include "util/utf8.hpp"
 
 namespace body {
 
@@ -212,6 +213,15 @@ tinygltf::Value vrm_extension(const Model& model, const std::vector<std::string>
   require_one_of("modification", m.modification,
                  {"prohibited", "allowModification", "allowModificationRedistribution"});
   if (m.license_url.empty()) throw ExportError("VRM meta 'licenseUrl' must not be empty");
+  // JSON text must be UTF-8 (the window passes what the user typed).
+  std::vector<std::pair<const char*, const std::string*>> texts = {
+      {"name", &m.name}, {"version", &m.version}, {"licenseUrl", &m.license_url}};
+  for (const auto& a : m.authors) texts.emplace_back("authors", &a);
+  for (const auto& [field, text] : texts) {
+    if (!util::is_valid_utf8(*text)) {
+      throw ExportError("VRM meta '" + std::string(field) + "' is not valid UTF-8 text");
+    }
+  }
   tinygltf::Value::Object meta;
   meta["name"] = str(m.name.empty() ? (model.name.empty() ? "body" : model.name) : m.name);
   meta["version"] = str(m.version);
@@ -574,7 +584,13 @@ std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, 
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
   const bool binary = kind != FileKind::gltf;
-  if (!writer.WriteGltfSceneToStream(&doc, out, !binary, binary)) {
+  bool written = false;
+  try {
+    written = writer.WriteGltfSceneToStream(&doc, out, !binary, binary);
+  } catch (const std::exception& e) {  // the JSON library refuses e.g. text that is not UTF-8
+    throw ExportError(std::string("the document could not be serialised: ") + e.what());
+  }
+  if (!written) {
     throw ExportError("tinygltf could not serialise the document");
   }
   return out.str();

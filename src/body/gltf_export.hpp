@@ -66,7 +66,10 @@ struct VrmMeta {
   bool allow_redistribution = false;
 };
 
-// Everything a caller (the export command, the window's save dialog) can choose.
+// Everything a caller (the export command, the window's save dialog) can choose; presets
+// (export_presets.hpp) fill it for the usual destinations. For a T-pose with the model's pose
+// correctives call load_pose_correctives(model) (model_loader.hpp) first: the loader leaves
+// them out because only posing needs them.
 struct ExportOptions {
   bool morph_targets = true;  // the shape components as morph targets (else shape only baked)
   MorphEncoding morph_encoding = MorphEncoding::split_signed;

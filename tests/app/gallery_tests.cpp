@@ -153,6 +153,12 @@ TEST_CASE("expert sliders: Use this makes the point the current best, preferred 
   CHECK_FALSE(c.busy());
   REQUIRE(c.session().planes_done() == 1);
   CHECK((c.session().history().back().chosen - x).norm() < 1e-12);
+  // It was autosaved, and the file reads back (a slider entry has no clicks).
+  CHECK(c.autosave_problem().empty());
+  const auto reloaded = app::load_session(dir.path / "s.json");
+  CHECK(reloaded.problem.empty());
+  REQUIRE(reloaded.session);
+  CHECK(reloaded.session->planes_done() == 1);
   // The data says x beat the previous best: the model ranks it higher.
   const auto& search = c.session().search();
   CHECK(search.posterior_mean(x) > search.posterior_mean(before));

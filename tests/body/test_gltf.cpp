@@ -711,6 +711,10 @@ TEST_CASE("gltf: .vrm holds VRMC_vrm with meta and the humanoid bone map", "[glt
   opt.vrm.commercial_usage = "free";
   CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt),
                     Contains("commercialUsage") && Contains("'free'"));
+  opt.vrm.commercial_usage = "corporation";
+  opt.vrm.authors = {"ok", "bad \xff byte"};
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt),
+                    Contains("avatar.vrm") && Contains("'authors'") && Contains("UTF-8"));
 }
 
 TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
