@@ -1,13 +1,14 @@
 // `session-info FILE`: loads a session file exactly as the window does (the same parser and
-// checks, then its body model with the session's component count) and prints what it holds,
+// checks, then its design space with the session's dimensions) and prints what it holds,
 // or why it is unusable. Never moves or changes the file.
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "app/session_store.hpp"
-#include "body/model_loader.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
+#include "spaces/space_factory.hpp"
 
 namespace {
 
@@ -39,8 +40,8 @@ int run(int argc, char** argv) {
   const auto& search = session->search();
   std::cout << "file: " << path << "\n"
             << "version: 1\n"
-            << "model: " << (s.model_path.empty() ? "(embedded default model)" : s.model_path)
-            << "\n"
+            << "space: " << s.space << "\n"
+            << "model: " << (s.model_path.empty() ? "(built-in default)" : s.model_path) << "\n"
             << "components: " << s.components << "\n"
             << "grid: " << s.grid_size << "x" << s.grid_size << ", " << s.zoom_levels
             << " clicks per plane\n"
@@ -50,18 +51,18 @@ int run(int argc, char** argv) {
             << "preference data: " << search.data().point_count() << " points, "
             << search.data().preference_count() << " preferences\n"
             << "seed: " << s.seed << "\n";
-  // The window resumes a session only with its model at the same component count.
+  // The window resumes a session only if its design space opens (the body model or the
+  // photo) with the same number of dimensions.
   try {
-    const body::Model model = s.model_path.empty() ? body::load_default_model(s.components)
-                                                   : body::load_model(s.model_path, s.components);
-    if (model.component_count() != s.components) {
-      throw std::runtime_error("the model has " + std::to_string(model.component_count()) +
-                               " components, the session " + std::to_string(s.components));
+    const auto space = spaces::open_space(app::SpaceSettings{s.space, s.model_path, s.components});
+    if (space->dimensions() != s.components) {
+      throw std::runtime_error("the space now has " + std::to_string(space->dimensions()) +
+                               " dimensions, the session " + std::to_string(s.components));
     }
-    std::cout << "model check: " << model.name << ", " << model.total_components
-              << " components in the file\n";
+    std::cout << "space check: " << space->description() << "\n";
   } catch (const std::exception& e) {
-    std::cout << "usable: no: " << path << ": cannot load its body model: " << e.what() << "\n";
+    std::cout << "usable: no: " << path << ": cannot open its " << s.space << " space: " << e.what()
+              << "\n";
     return 1;
   }
   std::cout << "usable: yes\n";

@@ -10,8 +10,10 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "app/session.hpp"
 #include "app/session_store.hpp"
+
 #include "app/worker.hpp"
 #include "session_fixtures.hpp"
 
@@ -353,4 +355,15 @@ TEST_CASE("a session that would not read back is never written, and the last goo
   CHECK_THROWS_WITH(app::save_session(session, file),
                     Catch::Contains("did not save") && Catch::Contains("kept the last good file"));
   CHECK(test_support::first_difference(read_text(file), good) == "");
+}
+
+TEST_CASE("a history entry set with the sliders (no clicks) loads and undoes",
+          "[app][session-file]") {
+  auto j = nlohmann::json::parse(test_fixtures::good_session_json());
+  j["history"][1]["path"] = nlohmann::json::array();
+  app::Session session = app::Session::from_json(j.dump());
+  CHECK(session.history()[1].path.empty());
+  while (session.undo_click()) {
+  }
+  CHECK(session.planes_done() == 0);
 }

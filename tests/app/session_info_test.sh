@@ -43,7 +43,7 @@ done
 sed 's#"model_path": ""#"model_path": "/nonexistent/model.npz"#' "$dir/good.json" >"$dir/no-model.json"
 out=$("$tool" session-info "$dir/no-model.json" 2>&1)
 rc=$?
-if [ $rc -ne 1 ] || ! grep -q "cannot load its body model.*nonexistent/model.npz" <<<"$out"; then
+if [ $rc -ne 1 ] || ! grep -q "cannot open its body space.*nonexistent/model.npz" <<<"$out"; then
   echo "FAIL: session without its model: exit $rc: $out"
   failures=$((failures + 1))
 else
