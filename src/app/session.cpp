@@ -151,7 +151,9 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
     sps::GridView next;
     next.spacing = view.spacing * factor;
     const double half = 0.5 * next.spacing * static_cast<double>(span);
-    const double lo = -1.0 + half, hi = 1.0 - half;
+    // Within the first level's extent (the plane's square, or more when it was widened).
+    const double extent = 0.5 * views_.front().spacing * static_cast<double>(span);
+    const double lo = -extent + half, hi = extent - half;
     next.s = lo <= hi ? std::clamp(s, lo, hi) : s;
     next.t = line ? 0.0 : (lo <= hi ? std::clamp(t, lo, hi) : t);
     return next;
@@ -170,6 +172,23 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
 void Session::update_views() {
   const bool line = search_.current_plane().is_line();
   views_.assign(1, first_view(line, settings_.grid_size));
+  if (distance_ && !line && shows_look_alikes(views_.front(), kCloneMm)) {
+    // The optimizer's plane is too small to see (e.g. it runs along directions that barely
+    // change the body): widen the first grid beyond the plane's square, as long as no cell
+    // leaves the box.
+    const sps::GridView base = views_.front();
+    for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
+      sps::GridView wider = base;
+      wider.spacing *= factor;
+      bool clamped = false;
+      for (const auto& p : cells_at(wider)) clamped = clamped || p.clamped;
+      if (clamped) break;
+      if (!shows_look_alikes(wider, kCloneMm)) {
+        views_.front() = wider;
+        break;
+      }
+    }
+  }
   ended_early_ = false;
   for (std::size_t i = 0; i < path_.size(); ++i) {
     bool distinct = true;

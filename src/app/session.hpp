@@ -73,6 +73,12 @@ class Session {
   // Recomputes the zoom levels of the current plane. Not saved with the session.
   void set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy = {});
   bool has_perceptual_distance() const { return static_cast<bool>(distance_); }
+  // How much each search coordinate changes the body over its range (mm, e.g.
+  // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and
+  // shapes its planes with it from the next plane on (saved with the search). Empty: none.
+  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
+    search_.set_perceptual_scale(mm_per_unit);
+  }
 
   const SessionSettings& settings() const { return settings_; }
   const sps::PlaneSearch& search() const { return search_; }
@@ -86,8 +92,8 @@ class Session {
   // cells() lays n*n points along the segment instead).
   sps::GridView view() const { return views_.back(); }
   std::vector<sps::GridPoint> cells() const { return cells_at(views_.back()); }
-  // The view of each zoom level so far: views()[0] is the whole plane, views()[k] the grid
-  // after k clicks.
+  // The view of each zoom level so far: views()[0] is the whole plane (wider when the plane
+  // would show look-alikes and the box has room), views()[k] the grid after k clicks.
   const std::vector<sps::GridView>& views() const { return views_; }
   std::vector<sps::GridPoint> cells_at(const sps::GridView& view) const;
 

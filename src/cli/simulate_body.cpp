@@ -49,10 +49,13 @@ Eigen::VectorXf random_target(int k, std::uint64_t seed) {
 }  // namespace
 
 int run_body_simulation(const ArgParser& args) {
-  std::set<std::string> known{
-      "function", "model",         "components", "target",   "target-betas", "user",
-      "jnd-mm",   "trials",        "iterations", "seed",     "grid",         "levels",
-      "csv",      "per-trial-csv", "quiet",      "no-adapt", "distinct-mm"};
+  std::set<std::string> known{"function",     "model",         "components",
+                              "target",       "target-betas",  "user",
+                              "jnd-mm",       "trials",        "iterations",
+                              "seed",         "grid",          "levels",
+                              "csv",          "per-trial-csv", "quiet",
+                              "no-adapt",     "distinct-mm",   "no-perceptual-scale",
+                              "min-plane-mm", "perceptual-ls"};
   known.insert(search_option_names().begin(), search_option_names().end());
   args.reject_unknown(known);
   const std::string user = args.get_or("user", "zoom-jnd");
@@ -66,6 +69,7 @@ int run_body_simulation(const ArgParser& args) {
   const int components = args.get_int("components", 10);
   const bool quiet = args.has("quiet");
   const bool adapt = !args.has("no-adapt");
+  const bool perceptual_scale = !args.has("no-perceptual-scale");
   app::ZoomPolicy policy;
   policy.distinct_mm = args.get_double("distinct-mm", policy.distinct_mm);
   if (!(jnd_mm >= 0.0 && jnd_mm < 1e4)) throw ArgError("--jnd-mm must be in [0, 10000)");
@@ -79,6 +83,8 @@ int run_body_simulation(const ArgParser& args) {
   const std::string target_mode = args.get_or("target", "random");
   if (target_mode != "random") throw ArgError("--target: use random, or give --target-betas");
   sps::SearchOptions options = read_search_options(args);
+  options.min_plane_length = args.get_double("min-plane-mm", 12.0);
+  options.perceptual_length_scales = args.has("perceptual-ls");
 
   const body::Model model = load_benchmark_model(args, components);
   const int k = model.component_count();
@@ -115,6 +121,7 @@ int run_body_simulation(const ArgParser& args) {
     settings.zoom_levels = levels;
     settings.seed = trial_seed;
     app::Session session(settings, options);
+    if (perceptual_scale) session.set_perceptual_scale(distance.direction_rms_mm());
     if (adapt) session.set_perceptual_distance(pairwise, policy);
     std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
     double best = std::numeric_limits<double>::infinity();
@@ -137,9 +144,9 @@ int run_body_simulation(const ArgParser& args) {
   title << "# " << sps::method_name(options.method) << " on body (" << model.name << ", " << k
         << " components), user zoom-jnd (" << grid << "x" << grid << ", " << levels
         << " levels, JND " << jnd_mm << " mm" << (adapt ? "" : ", no zoom adaptation")
-        << "), target " << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials
-        << " trials, seeds " << seed << "-" << (seed + trials - 1)
-        << "; gap = RMS vertex distance (mm) of the best "
+        << (perceptual_scale ? "" : ", no perceptual scale") << "), target "
+        << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "
+        << seed << "-" << (seed + trials - 1) << "; gap = RMS vertex distance (mm) of the best "
         << "body so far";
   write_simulation_results(args, title.str(), results);
   return 0;

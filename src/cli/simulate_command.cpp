@@ -49,6 +49,23 @@ options:
   --threads N         optimizer threads (default 2)
   --csv FILE          also write the table as CSV
   --per-trial-csv F   write every trial's gap and optimizer seconds per iteration
+body benchmark (--function body): the product's own job. Each trial has a target body; a
+simulated person clicks through the window's session logic (same cells, same zoom adaptation,
+same submission) and cannot tell apart cells whose RMS vertex distances to the target are
+within the JND of the best one (picks uniformly among them). Gap = RMS vertex distance (mm) of
+the best body chosen so far; extra columns duplicate_grids (fraction of the grids clicked on
+that held two bodies differing by < 5 mm at every vertex) and pinned_fraction (mean fraction of
+the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 iterations.
+  --model M           FILE (.npz) | neutral | female | male (default neutral = embedded model)
+  --components K      shape components searched (default 10)
+  --target random     each trial draws target betas i.i.d. N(0,1) truncated to +-2.5 (default)
+  --target-betas B..  the same target for every trial (missing betas are 0)
+  --user zoom-jnd     the only user here; --jnd-mm D (default 5)
+  --grid 3|5, --levels L   the window's grid and clicks per plane
+  --no-adapt          do not give the session the perceptual distance (fixed factor-2 zoom)
+  --distinct-mm D     the session's smallest difference between cells (default 10)
+  --no-perceptual-scale  do not tell the optimizer how much each direction changes the body
+
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
   --noise-variance B, --plane-restarts N, --ei-starts N, --representatives 5|9
@@ -62,8 +79,10 @@ functions:
 }
 
 int run(int argc, char** argv) {
-  const cli::ArgParser args(argc, argv, {"help", "zoom-prefs", "quiet", "no-adapt"},
-                            {"target-betas"});
+  const cli::ArgParser args(
+      argc, argv,
+      {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale", "perceptual-ls"},
+      {"target-betas"});
   if (args.has("help")) {
     print_help();
     return 0;

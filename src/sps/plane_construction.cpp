@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "sps/bounded_maximizer.hpp"
@@ -170,7 +171,104 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
     }
   }
   plane.v = v;
+  if (settings.perceptual_scale.size() == d) {
+    shape_for_person(plane, settings.perceptual_scale, settings.min_plane_length);
+  }
   return plane;
+}
+
+namespace {
+
+// A direction for a plane through c that a person can see: `start` restricted to the
+// coordinates with room on both sides of c, orthogonal to `avoid` in the perceptual metric,
+// scaled to `wanted` (perceptual length) and fitted so that c +- it stays in the box. While the
+// box keeps it short, the coordinate that limits it is dropped and the next try made; the
+// visibly longest result is returned (zero if none).
+Eigen::VectorXd visible_direction(const Eigen::VectorXd& c, const Eigen::VectorXd& start,
+                                  const Eigen::VectorXd& avoid, const Eigen::VectorXd& scale,
+                                  double wanted) {
+  const Eigen::Index d = c.size();
+  const Eigen::VectorXd s2 = scale.cwiseProduct(scale);
+  const Eigen::VectorXd bound = v_bound(c);
+  Eigen::VectorXd free = (bound.array() > 0.02).cast<double>().matrix();
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(d);
+  double best_len = -1.0;
+  for (Eigen::Index attempt = 0; attempt < d; ++attempt) {
+    Eigen::VectorXd dir = start.cwiseProduct(free);
+    if (dir.cwiseProduct(scale).norm() < 1e-9 * std::max(1.0, start.cwiseProduct(scale).norm())) {
+      // Nothing of `start` left among the free coordinates: the most visible free one.
+      Eigen::Index k_best = -1;
+      for (Eigen::Index k = 0; k < d; ++k) {
+        if (free(k) > 0.0 && (k_best < 0 || scale(k) * bound(k) > scale(k_best) * bound(k_best))) {
+          k_best = k;
+        }
+      }
+      if (k_best < 0) break;
+      dir = Eigen::VectorXd::Unit(d, k_best);
+    }
+    const Eigen::VectorXd avoid_free = avoid.cwiseProduct(free);
+    const double aa = avoid_free.dot(s2.cwiseProduct(avoid_free));
+    if (aa > 0.0) dir -= (dir.dot(s2.cwiseProduct(avoid_free)) / aa) * avoid_free;
+    const double dir_len = dir.cwiseProduct(scale).norm();
+    if (dir_len < 1e-12) break;
+    dir *= wanted / dir_len;
+    const Eigen::VectorXd fitted = fit_symmetric(c, dir);
+    const double len = fitted.cwiseProduct(scale).norm();
+    if (len > best_len) {
+      best_len = len;
+      best = fitted;
+    }
+    if (len >= 0.999 * wanted) break;
+    Eigen::Index limiting = -1;
+    double tightest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < d; ++k) {
+      if (free(k) > 0.0 && std::abs(dir(k)) > 0.0 && bound(k) / std::abs(dir(k)) < tightest) {
+        tightest = bound(k) / std::abs(dir(k));
+        limiting = k;
+      }
+    }
+    if (limiting < 0) break;
+    free(limiting) = 0.0;
+  }
+  return best;
+}
+
+}  // namespace
+
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length) {
+  const Eigen::Index d = plane.c.size();
+  const double u_scaled = plane.u.cwiseProduct(scale).norm();
+  if (u_scaled > 1e-12 && u_scaled < min_length) {
+    const Eigen::VectorXd longer = (min_length / u_scaled) * plane.u;
+    plane.u = fit_in_box(plane.c, longer) * longer;
+    correct_opposite_vertex(plane);
+  }
+  if (plane.u.cwiseProduct(scale).norm() < 0.5 * min_length) {
+    // x_EI differs from x+ only where the eye cannot tell: show the visible part of that
+    // direction instead (its components weighted by how visible they are).
+    const Eigen::VectorXd visible =
+        visible_direction(plane.c, plane.u.cwiseProduct(scale.cwiseProduct(scale)),
+                          Eigen::VectorXd::Zero(d), scale, min_length);
+    if (visible.cwiseProduct(scale).norm() > plane.u.cwiseProduct(scale).norm()) {
+      plane.u = visible;
+      correct_opposite_vertex(plane);
+    }
+  }
+  if (plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
+    // c + u/2 +- u/2 spans c .. c + u, all inside the box (both ends are).
+    plane.c = plane.c + 0.5 * plane.u;
+    plane.u = 0.5 * plane.u;
+    plane.u_neg_scale = 1.0;
+    if (plane.v.size() == d) plane.v = fit_symmetric(plane.c, plane.v);
+  }
+  if (d < 2 || plane.v.size() != d) return;
+  // v orthogonal to u in the perceptual metric (orthogonal in x is not enough: u + v can look
+  // like no change at all) and at least as long as min_length and half of u.
+  const double u_len = plane.u.cwiseProduct(scale).norm();
+  const double v_len = plane.v.cwiseProduct(scale).norm();
+  const double wanted = std::max({v_len, 0.5 * u_len, min_length});
+  const Eigen::VectorXd v = visible_direction(plane.c, plane.v, plane.u, scale, wanted);
+  if (v.norm() > 1e-6) plane.v = v;
 }
 
 Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng) {

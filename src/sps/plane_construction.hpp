@@ -33,7 +33,16 @@ struct PlaneSearchSettings {
   int restarts = 10;
   int max_iterations = 25;
   int threads = 2;
+  Eigen::VectorXd perceptual_scale;  // empty, or SearchOptions::perceptual_scale
+  double min_plane_length = 0.0;     // SearchOptions::min_plane_length
 };
+
+// The person-friendly plane shape used with a perceptual scale (see SearchOptions): u is
+// lengthened (beyond x_EI, within the box) to at least `min_length` in `scale` units; when c
+// sits close to a bound along -u (u_neg_scale < 1/2) the plane is moved forward so that c
+// becomes its corner c' - u' (no fold of look-alike cells behind it); a v shorter than half
+// of u or than `min_length` is lengthened within the coordinates that leave room.
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length);
 
 Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
                 const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,

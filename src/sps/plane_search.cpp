@@ -109,6 +109,30 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
     throw std::invalid_argument("the number of dimensions must be between 1 and 1000");
   }
   plane_ = first_plane(options_.dims, rng_);
+  const Eigen::VectorXd scale = options_.perceptual_scale;
+  set_perceptual_scale(scale);
+}
+
+void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
+  if (scale.size() == 0) {
+    options_.perceptual_scale.resize(0);
+    options_.model.length_scale_factors.resize(0);
+    return;
+  }
+  if (scale.size() != options_.dims || !scale.allFinite() || (scale.array() <= 0.0).any()) {
+    throw std::invalid_argument("the perceptual scale needs " + std::to_string(options_.dims) +
+                                " positive finite entries");
+  }
+  options_.perceptual_scale = scale;
+  // Relative to the geometric mean, so the overall prior is unchanged; limited to a factor of
+  // 4 either way so that no direction is frozen or ignored entirely.
+  const double mean_log = scale.array().log().mean();
+  if (options_.perceptual_length_scales) {
+    options_.model.length_scale_factors =
+        (mean_log - scale.array().log()).exp().max(0.25).min(4.0).matrix();
+  } else {
+    options_.model.length_scale_factors.resize(0);
+  }
 }
 
 void PlaneSearch::submit(const Eigen::VectorXd& chosen,
@@ -177,6 +201,8 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice) {
   PlaneSearchSettings ps;
   ps.restarts = options_.plane_restarts;
   ps.threads = options_.threads;
+  ps.perceptual_scale = options_.perceptual_scale;
+  ps.min_plane_length = options_.min_plane_length;
   plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps);
 }
 
@@ -248,6 +274,11 @@ std::string PlaneSearch::to_json() const {
                     {"noise_variance", m.noise_variance},
                     {"max_hyper_iterations", m.max_hyper_iterations},
                     {"max_points", m.max_points}}}};
+  if (options_.perceptual_scale.size() > 0) {
+    j["options"]["perceptual_scale"] = vec_to_json(options_.perceptual_scale);
+    j["options"]["min_plane_length"] = options_.min_plane_length;
+    j["options"]["perceptual_length_scales"] = options_.perceptual_length_scales;
+  }
   j["rng"] = rng_state();
   json points = json::array();
   for (Eigen::Index i = 0; i < data_.points().cols(); ++i) {
@@ -309,6 +340,11 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     options.model.max_points = m.value("max_points", options.model.max_points);
     if (options.model.max_points < 2) throw std::runtime_error("max_points must be at least 2");
 
+    if (o.contains("perceptual_scale")) {
+      options.perceptual_scale = vec_from_json(o.at("perceptual_scale"), "perceptual_scale");
+      options.min_plane_length = o.value("min_plane_length", 0.0);
+      options.perceptual_length_scales = o.value("perceptual_length_scales", false);
+    }
     PlaneSearch search(options);
     const int d = options.dims;
     for (const json& p : j.at("points")) search.data_.add_point_exact(vec_from_json(p, "point", d));
