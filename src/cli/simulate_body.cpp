@@ -83,7 +83,10 @@ int run_body_simulation(const ArgParser& args) {
   const std::string target_mode = args.get_or("target", "random");
   if (target_mode != "random") throw ArgError("--target: use random, or give --target-betas");
   sps::SearchOptions options = read_search_options(args);
-  options.min_plane_length = args.get_double("min-plane-mm", 12.0);
+  options.min_plane_length = args.get_double("min-plane-mm", options.min_plane_length);
+  if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
+    throw ArgError("--min-plane-mm must be in [0, 10000)");
+  }
   options.perceptual_length_scales = args.has("perceptual-ls");
 
   const body::Model model = load_benchmark_model(args, components);

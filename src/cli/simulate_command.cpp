@@ -65,6 +65,8 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --no-adapt          do not give the session the perceptual distance (fixed factor-2 zoom)
   --distinct-mm D     the session's smallest difference between cells (default 10)
   --no-perceptual-scale  do not tell the optimizer how much each direction changes the body
+  --min-plane-mm L    with the perceptual scale: smallest RMS length of u and v (default 12)
+  --perceptual-ls     also scale the length-scale priors by it (off: measured worse)
 
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,

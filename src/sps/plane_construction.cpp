@@ -194,21 +194,26 @@ Eigen::VectorXd visible_direction(const Eigen::VectorXd& c, const Eigen::VectorX
   Eigen::VectorXd best = Eigen::VectorXd::Zero(d);
   double best_len = -1.0;
   for (Eigen::Index attempt = 0; attempt < d; ++attempt) {
-    Eigen::VectorXd dir = start.cwiseProduct(free);
-    if (dir.cwiseProduct(scale).norm() < 1e-9 * std::max(1.0, start.cwiseProduct(scale).norm())) {
-      // Nothing of `start` left among the free coordinates: the most visible free one.
-      Eigen::Index k_best = -1;
-      for (Eigen::Index k = 0; k < d; ++k) {
-        if (free(k) > 0.0 && (k_best < 0 || scale(k) * bound(k) > scale(k_best) * bound(k_best))) {
-          k_best = k;
-        }
-      }
-      if (k_best < 0) break;
-      dir = Eigen::VectorXd::Unit(d, k_best);
-    }
     const Eigen::VectorXd avoid_free = avoid.cwiseProduct(free);
     const double aa = avoid_free.dot(s2.cwiseProduct(avoid_free));
-    if (aa > 0.0) dir -= (dir.dot(s2.cwiseProduct(avoid_free)) / aa) * avoid_free;
+    const auto orthogonal = [&](Eigen::VectorXd x) {
+      if (aa > 0.0) x -= (x.dot(s2.cwiseProduct(avoid_free)) / aa) * avoid_free;
+      return x;
+    };
+    Eigen::VectorXd dir = orthogonal(start.cwiseProduct(free));
+    if (dir.cwiseProduct(scale).norm() < 1e-9 * std::max(1.0, start.cwiseProduct(scale).norm())) {
+      // Nothing of `start` left: the free coordinate with the most visible room that is not
+      // along `avoid`.
+      double best_room = 0.0;
+      for (Eigen::Index k = 0; k < d; ++k) {
+        if (free(k) <= 0.0 || scale(k) * bound(k) <= best_room) continue;
+        const Eigen::VectorXd candidate = orthogonal(Eigen::VectorXd::Unit(d, k));
+        if (candidate.cwiseProduct(scale).norm() > 1e-6 * scale(k)) {
+          best_room = scale(k) * bound(k);
+          dir = candidate;
+        }
+      }
+    }
     const double dir_len = dir.cwiseProduct(scale).norm();
     if (dir_len < 1e-12) break;
     dir *= wanted / dir_len;
@@ -237,11 +242,17 @@ Eigen::VectorXd visible_direction(const Eigen::VectorXd& c, const Eigen::VectorX
 
 void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length) {
   const Eigen::Index d = plane.c.size();
+  if (plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
+    // c + u/2 +- u/2 spans c .. c + u, all inside the box (both ends are).
+    plane.c = plane.c + 0.5 * plane.u;
+    plane.u = 0.5 * plane.u;
+    plane.u_neg_scale = 1.0;
+  }
   const double u_scaled = plane.u.cwiseProduct(scale).norm();
   if (u_scaled > 1e-12 && u_scaled < min_length) {
-    const Eigen::VectorXd longer = (min_length / u_scaled) * plane.u;
-    plane.u = fit_in_box(plane.c, longer) * longer;
-    correct_opposite_vertex(plane);
+    // Longer along the same direction, as far as the box allows on both sides of c.
+    const Eigen::VectorXd longer = fit_symmetric(plane.c, (min_length / u_scaled) * plane.u);
+    if (longer.cwiseProduct(scale).norm() > u_scaled) plane.u = longer;
   }
   if (plane.u.cwiseProduct(scale).norm() < 0.5 * min_length) {
     // x_EI differs from x+ only where the eye cannot tell: show the visible part of that
@@ -251,16 +262,9 @@ void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_len
                           Eigen::VectorXd::Zero(d), scale, min_length);
     if (visible.cwiseProduct(scale).norm() > plane.u.cwiseProduct(scale).norm()) {
       plane.u = visible;
-      correct_opposite_vertex(plane);
     }
   }
-  if (plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
-    // c + u/2 +- u/2 spans c .. c + u, all inside the box (both ends are).
-    plane.c = plane.c + 0.5 * plane.u;
-    plane.u = 0.5 * plane.u;
-    plane.u_neg_scale = 1.0;
-    if (plane.v.size() == d) plane.v = fit_symmetric(plane.c, plane.v);
-  }
+  correct_opposite_vertex(plane);
   if (d < 2 || plane.v.size() != d) return;
   // v orthogonal to u in the perceptual metric (orthogonal in x is not enough: u + v can look
   // like no change at all) and at least as long as min_length and half of u.

@@ -342,7 +342,7 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
 
     if (o.contains("perceptual_scale")) {
       options.perceptual_scale = vec_from_json(o.at("perceptual_scale"), "perceptual_scale");
-      options.min_plane_length = o.value("min_plane_length", 0.0);
+      options.min_plane_length = o.value("min_plane_length", 12.0);
       options.perceptual_length_scales = o.value("perceptual_length_scales", false);
     }
     PlaneSearch search(options);
