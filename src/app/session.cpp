@@ -212,6 +212,18 @@ ClickResult Session::click(const sps::GridCell& cell) {
   return submission_pending() ? ClickResult::kPlaneFinished : ClickResult::kZoomed;
 }
 
+std::string Session::plane_note() const {
+  return ended_early_ ? "No visible change left in this direction: this click is your choice." : "";
+}
+
+std::string Session::cell_note(const sps::GridPoint& cell) {
+  if (cell.clamped) return "Beyond the edge of the search range (shown at the edge).";
+  for (Eigen::Index i = 0; i < cell.x.size(); ++i) {
+    if (cell.x[i] <= 1e-3 || cell.x[i] >= 1.0 - 1e-3) return "At the edge of the search range.";
+  }
+  return "";
+}
+
 Submission Session::submission() const {
   if (!submission_pending()) throw std::logic_error("no finished plane to submit");
   const int n = settings_.grid_size;

@@ -100,6 +100,11 @@ class Session {
   // True when the plane ended before its last zoom level because a further zoom would have
   // shown look-alike cells: "no visible change left in this direction".
   bool ended_early() const { return ended_early_; }
+  // The same in plain words for the window, or "" when the plane did not end early.
+  std::string plane_note() const;
+  // Plain words for a cell at the edge of the search range (some shape coordinate at its
+  // limit, +-3 standard deviations for a body model), or "".
+  static std::string cell_note(const sps::GridPoint& cell);
 
   // Clicking cell (col,row) of the current grid.
   ClickResult click(const sps::GridCell& cell);

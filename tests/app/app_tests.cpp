@@ -410,8 +410,21 @@ TEST_CASE("undo after a plane that ended early reopens it", "[app][jnd]") {
     session.click({2, 2});
     ++clicks;
   }
+  CHECK(session.plane_note().find("No visible change") != std::string::npos);
   REQUIRE(session.undo_click());
   CHECK_FALSE(session.submission_pending());
   CHECK_FALSE(session.ended_early());
+  CHECK(session.plane_note().empty());
   CHECK(session.clicks_on_plane() == clicks - 1);
+}
+
+TEST_CASE("cell notes say 'edge of the search range' in plain words", "[app][jnd]") {
+  sps::GridPoint inside;
+  inside.x = Eigen::Vector3d(0.2, 0.5, 0.9);
+  CHECK(app::Session::cell_note(inside).empty());
+  sps::GridPoint edge = inside;
+  edge.x(1) = 1.0;
+  CHECK(app::Session::cell_note(edge) == "At the edge of the search range.");
+  edge.clamped = true;
+  CHECK(app::Session::cell_note(edge).find("Beyond the edge") == 0);
 }
