@@ -24,6 +24,7 @@ OUT=${OUT:-docs/benchmarks}
 REFERENCE_DIR=${REFERENCE_DIR:-../shared/anchors/reference-sps}
 [ -x "$BIN" ] || { echo "build first: bash tools/build.sh (looked for $BIN)"; exit 1; }
 mkdir -p "$OUT"
+[ -d "$REFERENCE_DIR" ] || { echo "no reference figures in $REFERENCE_DIR (set REFERENCE_DIR)"; exit 1; }
 
 settings=("gaussian 5" "gaussian 15" "rosenbrock 10" "rosenbrock 20")
 if [ "$ONLY_BODY" = 0 ]; then
