@@ -12,6 +12,7 @@
 #include "cli/command_registry.hpp"
 #include "default_model/default_model.hpp"
 #include "default_model/preview_rasterizer.hpp"
+#include "util/atomic_file.hpp"
 
 namespace {
 
@@ -92,21 +93,7 @@ int run(int argc, char** argv) {
     std::printf("%s is up to date (%zu bytes)\n", output.c_str(), model.npz.size());
     return 0;
   }
-  const std::string tmp = output + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(model.npz.data()),
-              static_cast<std::streamsize>(model.npz.size()));
-    if (!out) {
-      std::fprintf(stderr, "generate-default-model: cannot write %s\n", tmp.c_str());
-      return 1;
-    }
-  }
-  if (std::rename(tmp.c_str(), output.c_str()) != 0) {
-    std::fprintf(stderr, "generate-default-model: cannot rename %s to %s\n", tmp.c_str(),
-                 output.c_str());
-    return 1;
-  }
+  util::write_file_atomically(output, model.npz.data(), model.npz.size());
   std::printf("wrote %s (%zu bytes)\n", output.c_str(), model.npz.size());
   return 0;
 }

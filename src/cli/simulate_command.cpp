@@ -3,7 +3,6 @@
 // iteration. This is the benchmark behind docs/benchmarks.md.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -16,8 +15,8 @@
 #include "cli/simulate_body.hpp"
 #include "cli/simulate_common.hpp"
 #include "sps/plane_search.hpp"
-#include "sps/simulated_user.hpp"
-#include "sps/test_functions.hpp"
+#include "testing/simulated_user.hpp"
+#include "testing/test_functions.hpp"
 
 namespace {
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+
+#include "util/atomic_file.hpp"
 
 namespace cli {
 
@@ -90,8 +92,7 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
   const std::size_t iterations = r.gaps.size();
   const std::size_t trials = iterations == 0 ? 0 : r.gaps.front().size();
   if (const auto path = args.get("per-trial-csv")) {
-    std::ofstream out(*path);
-    if (!out) throw std::runtime_error("cannot write " + *path);
+    std::ostringstream out;  // written atomically below
     out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds"
         << (r.body() ? ",look_alike_grids,grids,pinned_fraction" : "") << "\n"
         << std::setprecision(17);
@@ -106,12 +107,11 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
         out << "\n";
       }
     }
-    if (!out) throw std::runtime_error("writing " + *path + " failed (disk full?)");
+    util::write_file_atomically(*path, out.str());
   }
-  std::ofstream csv;
-  if (const auto path = args.get("csv")) {
-    csv.open(*path);
-    if (!csv) throw std::runtime_error("cannot write " + *path);
+  const auto csv_path = args.get("csv");
+  std::ostringstream csv;  // written atomically at the end
+  if (csv_path) {
     csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds"
         << (r.body() ? ",duplicate_grids,pinned_fraction" : "") << "\n";
   }
@@ -139,14 +139,14 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
       std::cout << "    " << std::setw(13) << duplicates << "  " << std::setw(15) << pinned;
     }
     std::cout << "\n";
-    if (csv) {
+    if (csv_path) {
       csv << (it + 1) << "," << std::setprecision(10) << std::scientific << m << "," << sd << ","
           << med << "," << mean(r.seconds[it]) << "," << sec;
       if (r.body()) csv << "," << duplicates << "," << pinned;
       csv << "\n";
     }
   }
-  if (csv && !csv.flush()) throw std::runtime_error("writing the CSV failed (disk full?)");
+  if (csv_path) util::write_file_atomically(*csv_path, csv.str());
 }
 
 }  // namespace cli
