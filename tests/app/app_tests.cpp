@@ -528,3 +528,23 @@ TEST_CASE("cell notes say 'edge of the search range' in plain words", "[app][jnd
   edge.clamped = true;
   CHECK(app::Session::cell_note(edge).find("Beyond the edge") == 0);
 }
+
+TEST_CASE("a plane that ended early is saved, loaded back and undone like any other",
+          "[app][jnd]") {
+  app::Session session(small_settings());
+  session.set_perceptual_distance(euclidean_mm(60.0));
+  for (int plane = 0; plane < 4 && session.planes_done() == plane; ++plane) {
+    while (!session.submission_pending()) session.click({2, 2});
+    const auto sub = session.submission();
+    sps::PlaneSearch next = session.search();
+    next.submit(sub.chosen, sub.extra_comparisons);
+    session.finish_plane(std::move(next));
+  }
+  bool shorter = false;
+  for (const auto& h : session.history()) shorter = shorter || h.path.size() < 4u;
+  REQUIRE(shorter);  // at least one plane ended before its fourth click
+  app::Session loaded = app::Session::from_json(session.to_json());
+  CHECK(loaded.planes_done() == session.planes_done());
+  CHECK(loaded.undo_click());
+  CHECK(loaded.clicks_on_plane() == static_cast<int>(session.history().back().path.size()) - 1);
+}
