@@ -4,18 +4,30 @@
 # (3x3 grid, 4 levels), then writes docs/benchmarks.md next to the reference figures in
 # ../shared/anchors/reference-sps/ (override with REFERENCE_DIR).
 #
+# Then the body benchmark (`simulate --function body`: the default model, 10 components, 3x3
+# grid, 4 levels, a simulated person with a 5 mm just-noticeable difference, random targets,
+# 15 planes) for SPS as the window runs it, SPS without the perceptual hooks, random planes
+# and SLS.
+#
 #   bash tools/sps_benchmark.sh            # 50 trials, as the paper (about 15-25 minutes)
 #   TRIALS=10 bash tools/sps_benchmark.sh  # a quicker look
+#   bash tools/sps_benchmark.sh --body     # only the body benchmark (BODY_TRIALS, default 20);
+#                                          # the synthetic tables come from the CSVs on disk
 set -euo pipefail
+ONLY_BODY=0
+[ "${1:-}" = "--body" ] && ONLY_BODY=1
 cd "$(dirname "$0")/.."
 TRIALS=${TRIALS:-50}
+BODY_TRIALS=${BODY_TRIALS:-20}
 BIN=${BIN:-build/sequential-gallery}
 OUT=${OUT:-docs/benchmarks}
 REFERENCE_DIR=${REFERENCE_DIR:-../shared/anchors/reference-sps}
 [ -x "$BIN" ] || { echo "build first: bash tools/build.sh (looked for $BIN)"; exit 1; }
 mkdir -p "$OUT"
+[ -d "$REFERENCE_DIR" ] || { echo "no reference figures in $REFERENCE_DIR (set REFERENCE_DIR)"; exit 1; }
 
 settings=("gaussian 5" "gaussian 15" "rosenbrock 10" "rosenbrock 20")
+if [ "$ONLY_BODY" = 0 ]; then
 for user in argmax zoom; do
   for s in "${settings[@]}"; do
     set -- $s
@@ -37,5 +49,18 @@ for s in "${settings[@]}"; do
     --trials "$TRIALS" --iterations 25 --seed 1000 --quiet \
     --csv "$OUT/$name.csv" --per-trial-csv "$OUT/${name}_per-trial.csv" > /dev/null
 done
-/usr/bin/python3 tools/sps_benchmark_report.py "$OUT" "$REFERENCE_DIR" "$TRIALS" > docs/benchmarks.md
+fi
+# The body benchmark. "sps-plain": the session without the body's perceptual distance and
+# scale (fixed factor-2 zoom, the paper's planes).
+for variant in sps sps-plain sps-random sls; do
+  name="body-10c_${variant}_zoom-jnd"
+  method=${variant%-plain}
+  extra=()
+  [ "$variant" = sps-plain ] && extra=(--no-adapt --no-perceptual-scale)
+  echo "== $name"
+  "$BIN" simulate --function body --components 10 --method "$method" --user zoom-jnd \
+    --jnd-mm 5 --grid 3 --levels 4 --trials "$BODY_TRIALS" --iterations 15 --seed 1000 --quiet \
+    "${extra[@]}" --csv "$OUT/$name.csv" --per-trial-csv "$OUT/${name}_per-trial.csv" > /dev/null
+done
+/usr/bin/python3 tools/sps_benchmark_report.py "$OUT" "$REFERENCE_DIR" "$TRIALS" "$BODY_TRIALS" > docs/benchmarks.md
 echo "wrote docs/benchmarks.md"

@@ -1,5 +1,6 @@
 #include "app/session.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cstdint>
 #include <stdexcept>
@@ -85,15 +86,14 @@ std::vector<sps::GridCell> path_from(const json& a, int n, const char* what) {
 
 }  // namespace
 
-sps::SearchOptions Session::search_options(const SessionSettings& settings) {
-  sps::SearchOptions options;
-  options.dims = settings.components;
-  options.seed = settings.seed;
-  return options;
-}
+Session::Session(const SessionSettings& settings) : Session(settings, sps::SearchOptions{}) {}
 
-Session::Session(const SessionSettings& settings)
-    : settings_(settings), search_(search_options(settings)) {
+Session::Session(const SessionSettings& settings, sps::SearchOptions options)
+    : settings_(settings), search_([&] {
+        options.dims = settings.components;
+        options.seed = settings.seed;
+        return options;
+      }()) {
   if (settings_.grid_size != 3 && settings_.grid_size != 5) {
     throw std::invalid_argument("grid size must be 3 or 5");
   }
@@ -102,14 +102,129 @@ Session::Session(const SessionSettings& settings)
   }
   if (settings_.components < 1) throw std::invalid_argument("components must be at least 1");
   start_point_ = search_.current_plane().c;
+  update_views();
 }
 
-sps::GridView Session::view() const {
-  return sps::grid_view(settings_.grid_size, path_);
+void Session::set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy) {
+  distance_ = std::move(distance);
+  policy_ = std::move(policy);
+  update_views();
 }
 
-std::vector<sps::GridPoint> Session::cells() const {
-  return sps::grid_points(search_.current_plane(), settings_.grid_size, view());
+namespace {
+
+// A line (SLS) shows n*n points along its segment c -> c+u in reading order; the view's s is
+// the centre in segment coordinates q in [-1, 1] (q = -1 is c, q = 1 is c + u).
+int line_points(int n) {
+  return n * n;
+}
+
+double line_coordinate(const sps::GridView& view, int n, int index) {
+  const int m = line_points(n);
+  return view.s + (static_cast<double>(index) - 0.5 * static_cast<double>(m - 1)) * view.spacing;
+}
+
+sps::GridView first_view(bool line, int n) {
+  sps::GridView view;
+  view.spacing =
+      line ? 2.0 / static_cast<double>(line_points(n) - 1) : 2.0 / static_cast<double>(n - 1);
+  return view;
+}
+
+}  // namespace
+
+std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
+  const int n = settings_.grid_size;
+  const sps::Plane& plane = search_.current_plane();
+  if (!plane.is_line()) return sps::grid_points(plane, n, view);
+  std::vector<sps::GridPoint> points;
+  for (int k = 0; k < line_points(n); ++k) {
+    sps::GridPoint p;
+    p.s = line_coordinate(view, n, k);
+    const Eigen::VectorXd raw = plane.c + (0.5 * (p.s + 1.0)) * plane.u;
+    p.x = raw.cwiseMax(0.0).cwiseMin(1.0);
+    p.clamped = (p.x - raw).cwiseAbs().maxCoeff() > 1e-12;
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm) const {
+  if (!distance_) return false;
+  std::vector<Eigen::VectorXd> xs;
+  for (auto& p : cells_at(view)) xs.push_back(std::move(p.x));
+  const Eigen::MatrixXd d = distance_(xs);
+  for (Eigen::Index i = 0; i < d.rows(); ++i) {
+    for (Eigen::Index j = i + 1; j < d.cols(); ++j) {
+      if (!(d(i, j) >= threshold_mm)) return true;
+    }
+  }
+  return false;
+}
+
+sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell& clicked,
+                                 bool check, bool& distinct) const {
+  const int n = settings_.grid_size;
+  const bool line = search_.current_plane().is_line();
+  double s = 0.0, t = 0.0;
+  if (line) {
+    s = line_coordinate(view, n, clicked.row * n + clicked.col);
+  } else {
+    sps::cell_coordinates(view, n, clicked, s, t);
+  }
+  // The zoomed grid stays inside the plane's square (s, t in [-1, 1]), where an SPS plane lies
+  // inside the box: cells are never clamped onto the bound (clamped cells become identical).
+  // The clicked cell is then off-centre near the square's edge.
+  const int span = line ? line_points(n) - 1 : n - 1;
+  const auto zoomed = [&](double factor) {
+    sps::GridView next;
+    next.spacing = view.spacing * factor;
+    const double half = 0.5 * next.spacing * static_cast<double>(span);
+    // Within the first level's extent (the plane's square, or more when it was widened).
+    const double extent = 0.5 * views_.front().spacing * static_cast<double>(span);
+    const double lo = -extent + half, hi = extent - half;
+    next.s = lo <= hi ? std::clamp(s, lo, hi) : s;
+    next.t = line ? 0.0 : (lo <= hi ? std::clamp(t, lo, hi) : t);
+    return next;
+  };
+  distinct = true;
+  // After the last level the grid is only shown while the optimizer runs: no check.
+  if (!distance_ || !check) return zoomed(policy_.factors.empty() ? 0.5 : policy_.factors.front());
+  for (double factor : policy_.factors) {
+    const sps::GridView next = zoomed(factor);
+    if (!shows_look_alikes(next, policy_.distinct_mm)) return next;
+  }
+  distinct = false;
+  return view;  // nothing visible left to zoom into: stay (the plane ends here)
+}
+
+void Session::update_views() {
+  const bool line = search_.current_plane().is_line();
+  views_.assign(1, first_view(line, settings_.grid_size));
+  if (distance_ && !line && shows_look_alikes(views_.front(), kCloneMm)) {
+    // The optimizer's plane is too small to see (e.g. it runs along directions that barely
+    // change the body): widen the first grid beyond the plane's square, as long as no cell
+    // leaves the box.
+    const sps::GridView base = views_.front();
+    for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
+      sps::GridView wider = base;
+      wider.spacing *= factor;
+      bool clamped = false;
+      for (const auto& p : cells_at(wider)) clamped = clamped || p.clamped;
+      if (clamped) break;
+      if (!shows_look_alikes(wider, kCloneMm)) {
+        views_.front() = wider;
+        break;
+      }
+    }
+  }
+  ended_early_ = false;
+  for (std::size_t i = 0; i < path_.size(); ++i) {
+    bool distinct = true;
+    const bool last_level = static_cast<int>(i) + 1 >= settings_.zoom_levels;
+    views_.push_back(next_view(views_.back(), path_[i], !last_level, distinct));
+    if (!distinct && !last_level && i + 1 == path_.size()) ended_early_ = true;
+  }
 }
 
 ClickResult Session::click(const sps::GridCell& cell) {
@@ -118,46 +233,63 @@ ClickResult Session::click(const sps::GridCell& cell) {
     return ClickResult::kIgnored;
   }
   path_.push_back(cell);
+  // Only the new level: earlier ones are unchanged.
+  bool distinct = true;
+  const bool last_level = static_cast<int>(path_.size()) >= settings_.zoom_levels;
+  views_.push_back(next_view(views_.back(), cell, !last_level, distinct));
+  ended_early_ = !distinct && !last_level;
   return submission_pending() ? ClickResult::kPlaneFinished : ClickResult::kZoomed;
+}
+
+std::string Session::plane_note() const {
+  return ended_early_ ? "No visible change left in this direction: this click is your choice." : "";
+}
+
+std::string Session::cell_note(const sps::GridPoint& cell) {
+  if (cell.clamped) return "Beyond the edge of the search range (shown at the edge).";
+  for (Eigen::Index i = 0; i < cell.x.size(); ++i) {
+    if (cell.x[i] <= 1e-3 || cell.x[i] >= 1.0 - 1e-3) return "At the edge of the search range.";
+  }
+  return "";
 }
 
 Submission Session::submission() const {
   if (!submission_pending()) throw std::logic_error("no finished plane to submit");
   const int n = settings_.grid_size;
-  const auto& plane = search_.current_plane();
   Submission s;
-  s.chosen = sps::chosen_point(plane, n, path_).x;
-  std::vector<sps::GridCell> prefix;
-  for (const auto& clicked : path_) {
-    const auto points = sps::grid_points(plane, n, prefix);
+  s.chosen = current_best();
+  for (std::size_t level = 0; level < path_.size(); ++level) {
+    const auto points = cells_at(views_[level]);
+    const auto& clicked = path_[level];
     const auto& preferred = points[static_cast<size_t>(clicked.row * n + clicked.col)].x;
     std::vector<Eigen::VectorXd> comparison{preferred};
     for (const auto& p : points) {
       if ((p.x - preferred).norm() > 1e-9) comparison.push_back(p.x);
     }
     if (comparison.size() > 1) s.extra_comparisons.push_back(std::move(comparison));
-    prefix.push_back(clicked);
   }
   return s;
 }
 
 void Session::finish_plane(sps::PlaneSearch updated_search) {
   if (!submission_pending()) throw std::logic_error("finish_plane without a finished plane");
-  history_.push_back(
-      {sps::chosen_point(search_.current_plane(), settings_.grid_size, path_).x, path_});
+  history_.push_back({current_best(), path_});
   search_ = std::move(updated_search);
   path_.clear();
+  update_views();
 }
 
 bool Session::undo_click() {
   if (!path_.empty()) {
     path_.pop_back();
+    update_views();
     return true;
   }
   if (history_.empty() || !search_.undo()) return false;
   path_ = history_.back().path;
   if (!path_.empty()) path_.pop_back();  // a point set by sliders has no clicks
   history_.pop_back();
+  update_views();
   return true;
 }
 
@@ -168,15 +300,18 @@ void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch update
   history_.push_back({chosen, {}});
   search_ = std::move(updated_search);
   path_.clear();
+  update_views();
 }
 
 bool Session::undo_plane() {
   if (!path_.empty()) {
     path_.clear();
+    update_views();
     return true;
   }
   if (history_.empty() || !search_.undo()) return false;
   history_.pop_back();
+  update_views();
   return true;
 }
 
@@ -185,11 +320,14 @@ void Session::start_over() {
   path_.clear();
   history_.clear();
   start_point_ = search_.current_plane().c;
+  update_views();
 }
 
 Eigen::VectorXd Session::current_best() const {
   if (!path_.empty()) {
-    return sps::chosen_point(search_.current_plane(), settings_.grid_size, path_).x;
+    const auto& clicked = path_.back();
+    const auto points = cells_at(views_[path_.size() - 1]);
+    return points[static_cast<size_t>(clicked.row * settings_.grid_size + clicked.col)].x;
   }
   return search_.x_plus();
 }
@@ -265,18 +403,19 @@ Session Session::from_json(const std::string& text) {
       entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
       entry.path = path_from(h.at("path"), n, "history path");
       // Undo reopens a finished plane with its clicks minus the last: each finished plane has
-      // exactly one click per zoom level, or none when the point was set with the expert
-      // sliders (adopt_point).
-      if (!entry.path.empty() && static_cast<int>(entry.path.size()) != settings.zoom_levels) {
+      // one click per zoom level, fewer when it ended early (no visible change left), or none
+      // when the point was set with the expert sliders (adopt_point).
+      if (static_cast<int>(entry.path.size()) > settings.zoom_levels) {
         throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
-                                 " clicks, expected " + std::to_string(settings.zoom_levels) +
-                                 " (or none)");
+                                 " clicks, expected at most " +
+                                 std::to_string(settings.zoom_levels));
       }
       session.history_.push_back(std::move(entry));
     }
     if (static_cast<int>(session.history_.size()) != session.search_.iteration()) {
       throw std::runtime_error("history length differs from the number of submissions");
     }
+    session.update_views();
     return session;
   } catch (const json::exception& e) {
     throw std::runtime_error(std::string("malformed session (") + e.what() + ")");

@@ -4,6 +4,7 @@
 // about GL, ImGui or threads. Serializes to JSON (see session_store.hpp for files).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,25 @@ enum class ClickResult {
   kPlaneFinished,  // the last zoom level: call submission() and then finish_plane()
 };
 
+// How different the bodies of some search points look: entry (i, j) is the largest vertex
+// distance in millimetres between the bodies of xs[i] and xs[j] (symmetric, zero diagonal).
+// The body space supplies it (body::ShapeDistance::pairwise_max_mm); the session uses it to
+// never show a grid with look-alike cells.
+using PairwiseDistance = std::function<Eigen::MatrixXd(const std::vector<Eigen::VectorXd>&)>;
+
+// Cells closer than this (largest vertex distance) are look-alikes: no grid may hold two.
+constexpr double kCloneMm = 5.0;
+
+// How a zoom level adapts when the distance hook is set.
+struct ZoomPolicy {
+  // Neighbouring cells of a grid must differ by at least this much (mm, largest vertex
+  // distance) for the grid to be shown; below it the session zooms by less, and when even the
+  // smallest zoom step would show look-alikes the plane ends early (the click is the choice).
+  double distinct_mm = 10.0;
+  // Zoom steps tried in order (new spacing / old spacing): the paper's factor 2 first.
+  std::vector<double> factors{0.5, 0.6, 0.7, 0.8};
+};
+
 // The submission a finished plane produces for sps::PlaneSearch::submit().
 struct Submission {
   Eigen::VectorXd chosen;
@@ -46,6 +66,20 @@ struct Submission {
 class Session {
  public:
   explicit Session(const SessionSettings& settings);
+  // The same with the optimizer's options (method, threads, model settings) given; dims and
+  // seed come from `settings`. For benchmarks and tests.
+  Session(const SessionSettings& settings, sps::SearchOptions search_options);
+
+  // Installs (or, with an empty function, removes) the perceptual distance between cells.
+  // Recomputes the zoom levels of the current plane. Not saved with the session.
+  void set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy = {});
+  bool has_perceptual_distance() const { return static_cast<bool>(distance_); }
+  // How much each search coordinate changes the body over its range (mm, e.g.
+  // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and
+  // shapes its planes with it from the next plane on (saved with the search). Empty: none.
+  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
+    search_.set_perceptual_scale(mm_per_unit);
+  }
 
   const SessionSettings& settings() const { return settings_; }
   const sps::PlaneSearch& search() const { return search_; }
@@ -54,15 +88,30 @@ class Session {
   int planes_done() const { return static_cast<int>(history_.size()); }
   int clicks_on_plane() const { return static_cast<int>(path_.size()); }
 
-  // The grid the user sees now (after the clicks so far on this plane).
-  sps::GridView view() const;
-  std::vector<sps::GridPoint> cells() const;
+  // The grid the user sees now (after the clicks so far on this plane). The window draws
+  // sps::grid_points(plane, n, view()), which equals cells() for every plane (for a line, SLS,
+  // cells() lays n*n points along the segment instead).
+  sps::GridView view() const { return views_.back(); }
+  std::vector<sps::GridPoint> cells() const { return cells_at(views_.back()); }
+  // The view of each zoom level so far: views()[0] is the whole plane (wider when the plane
+  // would show look-alikes and the box has room), views()[k] the grid after k clicks.
+  const std::vector<sps::GridView>& views() const { return views_; }
+  std::vector<sps::GridPoint> cells_at(const sps::GridView& view) const;
+
+  // True when the plane ended before its last zoom level because a further zoom would have
+  // shown look-alike cells: "no visible change left in this direction".
+  bool ended_early() const { return ended_early_; }
+  // The same in plain words for the window, or "" when the plane did not end early.
+  std::string plane_note() const;
+  // Plain words for a cell at the edge of the search range (some shape coordinate at its
+  // limit, +-3 standard deviations for a body model), or "".
+  static std::string cell_note(const sps::GridPoint& cell);
 
   // Clicking cell (col,row) of the current grid.
   ClickResult click(const sps::GridCell& cell);
   // True once the last zoom level was clicked and the plane waits for the optimizer.
   bool submission_pending() const {
-    return static_cast<int>(path_.size()) >= settings_.zoom_levels;
+    return static_cast<int>(path_.size()) >= settings_.zoom_levels || ended_early_;
   }
   // The choice and the intermediate levels as extra comparisons {clicked, other cells...}.
   Submission submission() const;
@@ -91,13 +140,21 @@ class Session {
   static Session from_json(const std::string& text);
 
  private:
-  static sps::SearchOptions search_options(const SessionSettings& settings);
+  // Recomputes views_ and ended_early_ from the plane, the path and the distance hook.
+  void update_views();
+  sps::GridView next_view(const sps::GridView& view, const sps::GridCell& clicked, bool check,
+                          bool& distinct) const;
+  bool shows_look_alikes(const sps::GridView& view, double threshold_mm) const;
 
   SessionSettings settings_;
   sps::PlaneSearch search_;
   std::vector<sps::GridCell> path_;
   std::vector<HistoryEntry> history_;
   Eigen::VectorXd start_point_;
+  PairwiseDistance distance_;
+  ZoomPolicy policy_;
+  std::vector<sps::GridView> views_;  // path_.size() + 1 entries
+  bool ended_early_ = false;
 };
 
 }  // namespace app

@@ -6,15 +6,17 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
+#include "cli/simulate_body.hpp"
+#include "cli/simulate_common.hpp"
 #include "sps/plane_search.hpp"
 #include "testing/simulated_user.hpp"
 #include "testing/test_functions.hpp"
-#include "util/atomic_file.hpp"
 
 namespace {
 
@@ -46,6 +48,25 @@ options:
   --threads N         optimizer threads (default 2)
   --csv FILE          also write the table as CSV
   --per-trial-csv F   write every trial's gap and optimizer seconds per iteration
+body benchmark (--function body): the product's own job. Each trial has a target body; a
+simulated person clicks through the window's session logic (same cells, same zoom adaptation,
+same submission) and cannot tell apart cells whose RMS vertex distances to the target are
+within the JND of the best one (picks uniformly among them). Gap = RMS vertex distance (mm) of
+the best body chosen so far; extra columns duplicate_grids (fraction of the grids clicked on
+that held two bodies differing by < 5 mm at every vertex) and pinned_fraction (mean fraction of
+the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 iterations.
+  --model M           FILE (.npz) | neutral | female | male (default neutral = embedded model)
+  --components K      shape components searched (default 10)
+  --target random     each trial draws target betas i.i.d. N(0,1) truncated to +-2.5 (default)
+  --target-betas B..  the same target for every trial (missing betas are 0)
+  --user zoom-jnd     the only user here; --jnd-mm D (default 5)
+  --grid 3|5, --levels L   the window's grid and clicks per plane
+  --no-adapt          do not give the session the perceptual distance (fixed factor-2 zoom)
+  --distinct-mm D     the session's smallest difference between cells (default 10)
+  --no-perceptual-scale  do not tell the optimizer how much each direction changes the body
+  --min-plane-mm L    with the perceptual scale: smallest RMS length of u and v (default 12)
+  --perceptual-ls     also scale the length-scale priors by it (off: measured worse)
+
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
   --noise-variance B, --plane-restarts N, --ei-starts N, --representatives 5|9
@@ -58,44 +79,21 @@ functions:
   }
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 int run(int argc, char** argv) {
-  const cli::ArgParser args(argc, argv, {"help", "zoom-prefs", "quiet"});
+  const cli::ArgParser args(
+      argc, argv,
+      {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale", "perceptual-ls"},
+      {"target-betas"});
   if (args.has("help")) {
     print_help();
     return 0;
   }
-  args.reject_unknown({"function",
-                       "dims",
-                       "optimum",
-                       "method",
-                       "user",
-                       "trials",
-                       "iterations",
-                       "seed",
-                       "grid",
-                       "levels",
-                       "resolution",
-                       "zoom-prefs",
-                       "current-best",
-                       "threads",
-                       "csv",
-                       "per-trial-csv",
-                       "quiet",
-                       "amplitude-prior",
-                       "length-scale-prior",
-                       "prior-log-variance",
-                       "btl-scale",
-                       "noise-variance",
-                       "plane-restarts",
-                       "ei-starts",
-                       "representatives"});
+  if (args.get_or("function", "gaussian") == "body") return cli::run_body_simulation(args);
+  std::set<std::string> known{"function",   "dims", "optimum",       "user",   "trials",
+                              "iterations", "seed", "grid",          "levels", "resolution",
+                              "zoom-prefs", "csv",  "per-trial-csv", "quiet"};
+  known.insert(cli::search_option_names().begin(), cli::search_option_names().end());
+  args.reject_unknown(known);
   const std::string function = args.get_or("function", "gaussian");
   const int dims = args.get_int("dims", 5);
   const double optimum = args.get_double("optimum", std::numeric_limits<double>::quiet_NaN());
@@ -109,34 +107,8 @@ int run(int argc, char** argv) {
   const int resolution = args.get_int("resolution", 640);
   const bool zoom_prefs = args.has("zoom-prefs");
   const bool quiet = args.has("quiet");
-
-  sps::SearchOptions options;
+  sps::SearchOptions options = cli::read_search_options(args);
   options.dims = dims;
-  options.threads = args.get_int("threads", 2);
-  if (!sps::parse_method(method_text, options.method)) {
-    throw cli::ArgError("--method: '" + method_text + "' is not sps, sps-random or sls");
-  }
-  options.model.amplitude_prior = args.get_double("amplitude-prior", options.model.amplitude_prior);
-  options.model.length_scale_prior =
-      args.get_double("length-scale-prior", options.model.length_scale_prior);
-  options.model.prior_log_variance =
-      args.get_double("prior-log-variance", options.model.prior_log_variance);
-  options.model.btl_scale = args.get_double("btl-scale", options.model.btl_scale);
-  options.model.noise_variance = args.get_double("noise-variance", options.model.noise_variance);
-  options.plane_restarts = args.get_int("plane-restarts", options.plane_restarts);
-  options.ei_restarts = args.get_int("ei-starts", options.ei_restarts);
-  options.representatives = args.get_int("representatives", options.representatives);
-  if (!(options.model.amplitude_prior > 0 && options.model.length_scale_prior > 0 &&
-        options.model.prior_log_variance > 0 && options.model.btl_scale > 0 &&
-        options.model.noise_variance > 0)) {
-    throw cli::ArgError("model settings must be positive");
-  }
-  const std::string best_text = args.get_or("current-best", "posterior-mean");
-  if (best_text == "last-selection") {
-    options.current_best = sps::CurrentBest::kLastSelection;
-  } else if (best_text != "posterior-mean") {
-    throw cli::ArgError("--current-best: use posterior-mean or last-selection");
-  }
   if (user != "argmax" && user != "zoom") throw cli::ArgError("--user: use argmax or zoom");
   if (trials < 1 || iterations < 1) throw cli::ArgError("--trials and --iterations must be >= 1");
   if (grid < 3 || grid % 2 == 0) throw cli::ArgError("--grid must be odd and at least 3");
@@ -144,9 +116,7 @@ int run(int argc, char** argv) {
   if (resolution < 2) throw cli::ArgError("--resolution must be at least 2");
   const auto g = sps::make_test_function(function, dims, optimum);
 
-  // gap[i][t], seconds[i][t]
-  std::vector<std::vector<double>> gaps(static_cast<std::size_t>(iterations));
-  std::vector<std::vector<double>> seconds(static_cast<std::size_t>(iterations));
+  cli::SimulationResults results(iterations, seed, false);
   for (int trial = 0; trial < trials; ++trial) {
     options.seed = static_cast<std::uint64_t>(seed + trial);
     sps::PlaneSearch search(options);
@@ -161,8 +131,8 @@ int run(int argc, char** argv) {
       } else {
         search.submit(answer.chosen);
       }
-      gaps[static_cast<std::size_t>(it)].push_back(g->optimum_value() - best);
-      seconds[static_cast<std::size_t>(it)].push_back(search.last_submit_seconds());
+      results.gaps[static_cast<std::size_t>(it)].push_back(g->optimum_value() - best);
+      results.seconds[static_cast<std::size_t>(it)].push_back(search.last_submit_seconds());
     }
     if (!quiet) {
       std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
@@ -170,53 +140,14 @@ int run(int argc, char** argv) {
   }
   if (!quiet) std::cerr << "\n";
 
-  if (const auto path = args.get("per-trial-csv")) {
-    std::ostringstream out;  // written atomically below
-    out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds\n" << std::setprecision(17);
-    for (int trial = 0; trial < trials; ++trial) {
-      for (int it = 0; it < iterations; ++it) {
-        out << trial << "," << (seed + trial) << "," << (it + 1) << ","
-            << gaps[static_cast<std::size_t>(it)][static_cast<std::size_t>(trial)] << ","
-            << seconds[static_cast<std::size_t>(it)][static_cast<std::size_t>(trial)] << "\n";
-      }
-    }
-    util::write_file_atomically(*path, out.str());
-  }
-  const auto csv_path = args.get("csv");
-  std::ostringstream csv;  // written atomically at the end
-  if (csv_path) {
-    csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds\n";
-  }
-  std::cout << "# " << method_text << " on " << g->name() << " " << dims << "-D, user " << user
-            << (user == "zoom" ? " (" + std::to_string(grid) + "x" + std::to_string(grid) + ", " +
-                                     std::to_string(levels) + " levels" +
-                                     (zoom_prefs ? ", zoom prefs" : "") + ")"
-                               : "")
-            << ", " << trials << " trials, seeds " << seed << "-" << (seed + trials - 1) << "\n";
-  std::cout << "iteration  mean_gap      sd_gap        median_gap    median_seconds\n";
-  for (int it = 0; it < iterations; ++it) {
-    const auto& v = gaps[static_cast<std::size_t>(it)];
-    double mean = 0.0;
-    for (double x : v) mean += x;
-    mean /= static_cast<double>(v.size());
-    double var = 0.0;
-    for (double x : v) var += (x - mean) * (x - mean);
-    const double sd = std::sqrt(var / static_cast<double>(v.size()));
-    const double med = median(v);
-    const double sec = median(seconds[static_cast<std::size_t>(it)]);
-    std::cout << std::setw(9) << (it + 1) << "  " << std::scientific << std::setprecision(4) << mean
-              << "    " << sd << "    " << med << "    " << std::fixed << std::setprecision(4)
-              << sec << "\n";
-    if (csv_path) {
-      const auto& secs = seconds[static_cast<std::size_t>(it)];
-      double mean_sec = 0.0;
-      for (double x : secs) mean_sec += x;
-      mean_sec /= static_cast<double>(secs.size());
-      csv << (it + 1) << "," << std::setprecision(10) << std::scientific << mean << "," << sd << ","
-          << med << "," << mean_sec << "," << sec << "\n";
-    }
-  }
-  if (csv_path) util::write_file_atomically(*csv_path, csv.str());
+  std::ostringstream title;
+  title << "# " << method_text << " on " << g->name() << " " << dims << "-D, user " << user
+        << (user == "zoom"
+                ? " (" + std::to_string(grid) + "x" + std::to_string(grid) + ", " +
+                      std::to_string(levels) + " levels" + (zoom_prefs ? ", zoom prefs" : "") + ")"
+                : "")
+        << ", " << trials << " trials, seeds " << seed << "-" << (seed + trials - 1);
+  cli::write_simulation_results(args, title.str(), results);
   return 0;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "sps/bounded_maximizer.hpp"
@@ -170,7 +171,108 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
     }
   }
   plane.v = v;
+  if (settings.perceptual_scale.size() == d) {
+    shape_for_person(plane, settings.perceptual_scale, settings.min_plane_length);
+  }
   return plane;
+}
+
+namespace {
+
+// A direction for a plane through c that a person can see: `start` restricted to the
+// coordinates with room on both sides of c, orthogonal to `avoid` in the perceptual metric,
+// scaled to `wanted` (perceptual length) and fitted so that c +- it stays in the box. While the
+// box keeps it short, the coordinate that limits it is dropped and the next try made; the
+// visibly longest result is returned (zero if none).
+Eigen::VectorXd visible_direction(const Eigen::VectorXd& c, const Eigen::VectorXd& start,
+                                  const Eigen::VectorXd& avoid, const Eigen::VectorXd& scale,
+                                  double wanted) {
+  const Eigen::Index d = c.size();
+  const Eigen::VectorXd s2 = scale.cwiseProduct(scale);
+  const Eigen::VectorXd bound = v_bound(c);
+  Eigen::VectorXd free = (bound.array() > 0.02).cast<double>().matrix();
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(d);
+  double best_len = -1.0;
+  for (Eigen::Index attempt = 0; attempt < d; ++attempt) {
+    const Eigen::VectorXd avoid_free = avoid.cwiseProduct(free);
+    const double aa = avoid_free.dot(s2.cwiseProduct(avoid_free));
+    const auto orthogonal = [&](Eigen::VectorXd x) {
+      if (aa > 0.0) x -= (x.dot(s2.cwiseProduct(avoid_free)) / aa) * avoid_free;
+      return x;
+    };
+    Eigen::VectorXd dir = orthogonal(start.cwiseProduct(free));
+    if (dir.cwiseProduct(scale).norm() < 1e-9 * std::max(1.0, start.cwiseProduct(scale).norm())) {
+      // Nothing of `start` left: the free coordinate with the most visible room that is not
+      // along `avoid`.
+      double best_room = 0.0;
+      for (Eigen::Index k = 0; k < d; ++k) {
+        if (free(k) <= 0.0 || scale(k) * bound(k) <= best_room) continue;
+        const Eigen::VectorXd candidate = orthogonal(Eigen::VectorXd::Unit(d, k));
+        if (candidate.cwiseProduct(scale).norm() > 1e-6 * scale(k)) {
+          best_room = scale(k) * bound(k);
+          dir = candidate;
+        }
+      }
+    }
+    const double dir_len = dir.cwiseProduct(scale).norm();
+    if (dir_len < 1e-12) break;
+    dir *= wanted / dir_len;
+    const Eigen::VectorXd fitted = fit_symmetric(c, dir);
+    const double len = fitted.cwiseProduct(scale).norm();
+    if (len > best_len) {
+      best_len = len;
+      best = fitted;
+    }
+    if (len >= 0.999 * wanted) break;
+    Eigen::Index limiting = -1;
+    double tightest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < d; ++k) {
+      if (free(k) > 0.0 && std::abs(dir(k)) > 0.0 && bound(k) / std::abs(dir(k)) < tightest) {
+        tightest = bound(k) / std::abs(dir(k));
+        limiting = k;
+      }
+    }
+    if (limiting < 0) break;
+    free(limiting) = 0.0;
+  }
+  return best;
+}
+
+}  // namespace
+
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length) {
+  const Eigen::Index d = plane.c.size();
+  if (plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
+    // c + u/2 +- u/2 spans c .. c + u, all inside the box (both ends are).
+    plane.c = plane.c + 0.5 * plane.u;
+    plane.u = 0.5 * plane.u;
+    plane.u_neg_scale = 1.0;
+  }
+  const double u_scaled = plane.u.cwiseProduct(scale).norm();
+  if (u_scaled > 1e-12 && u_scaled < min_length) {
+    // Longer along the same direction, as far as the box allows on both sides of c.
+    const Eigen::VectorXd longer = fit_symmetric(plane.c, (min_length / u_scaled) * plane.u);
+    if (longer.cwiseProduct(scale).norm() > u_scaled) plane.u = longer;
+  }
+  if (plane.u.cwiseProduct(scale).norm() < 0.5 * min_length) {
+    // x_EI differs from x+ only where the eye cannot tell: show the visible part of that
+    // direction instead (its components weighted by how visible they are).
+    const Eigen::VectorXd visible =
+        visible_direction(plane.c, plane.u.cwiseProduct(scale.cwiseProduct(scale)),
+                          Eigen::VectorXd::Zero(d), scale, min_length);
+    if (visible.cwiseProduct(scale).norm() > plane.u.cwiseProduct(scale).norm()) {
+      plane.u = visible;
+    }
+  }
+  correct_opposite_vertex(plane);
+  if (d < 2 || plane.v.size() != d) return;
+  // v orthogonal to u in the perceptual metric (orthogonal in x is not enough: u + v can look
+  // like no change at all) and at least as long as min_length and half of u.
+  const double u_len = plane.u.cwiseProduct(scale).norm();
+  const double v_len = plane.v.cwiseProduct(scale).norm();
+  const double wanted = std::max({v_len, 0.5 * u_len, min_length});
+  const Eigen::VectorXd v = visible_direction(plane.c, plane.v, plane.u, scale, wanted);
+  if (v.norm() > 1e-6) plane.v = v;
 }
 
 Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng) {

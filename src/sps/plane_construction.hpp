@@ -33,7 +33,17 @@ struct PlaneSearchSettings {
   int restarts = 10;
   int max_iterations = 25;
   int threads = 2;
+  Eigen::VectorXd perceptual_scale;  // empty, or SearchOptions::perceptual_scale
+  double min_plane_length = 0.0;     // SearchOptions::min_plane_length
 };
+
+// The person-friendly plane shape used with a perceptual scale (see SearchOptions): when c
+// sits close to a bound along -u (u_neg_scale < 1/2) the plane is moved forward so that c
+// becomes its corner c' - u' (no fold of look-alike cells behind it); u is lengthened to
+// `min_length` in `scale` units where the box allows, or replaced by the visible part of its
+// direction when it is invisible; v is made orthogonal to u in the perceptual metric and as
+// long as min_length and half of u, within the coordinates that leave room.
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length);
 
 Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
                 const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,

@@ -199,6 +199,30 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
       data_(options.dims),
       model_(std::make_shared<PreferenceModel>(options.dims, options.model)) {
   plane_ = first_plane(options_.dims, rng_);
+  const Eigen::VectorXd scale = options_.perceptual_scale;
+  set_perceptual_scale(scale);
+}
+
+void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
+  if (scale.size() == 0) {
+    options_.perceptual_scale.resize(0);
+    options_.model.length_scale_factors.resize(0);
+    return;
+  }
+  if (scale.size() != options_.dims || !scale.allFinite() || (scale.array() <= 0.0).any()) {
+    throw std::invalid_argument("the perceptual scale needs " + std::to_string(options_.dims) +
+                                " positive finite entries");
+  }
+  options_.perceptual_scale = scale;
+  // Relative to the geometric mean, so the overall prior is unchanged; limited to a factor of
+  // 4 either way so that no direction is frozen or ignored entirely.
+  const double mean_log = scale.array().log().mean();
+  if (options_.perceptual_length_scales) {
+    options_.model.length_scale_factors =
+        (mean_log - scale.array().log()).exp().max(0.25).min(4.0).matrix();
+  } else {
+    options_.model.length_scale_factors.resize(0);
+  }
 }
 
 void PlaneSearch::submit(const Eigen::VectorXd& chosen,
@@ -291,6 +315,8 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice) {
   PlaneSearchSettings ps;
   ps.restarts = options_.plane_restarts;
   ps.threads = options_.threads;
+  ps.perceptual_scale = options_.perceptual_scale;
+  ps.min_plane_length = options_.min_plane_length;
   plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps);
 }
 
@@ -362,6 +388,11 @@ std::string PlaneSearch::to_json() const {
                     {"noise_variance", m.noise_variance},
                     {"max_hyper_iterations", m.max_hyper_iterations},
                     {"max_points", m.max_points}}}};
+  if (options_.perceptual_scale.size() > 0) {
+    j["options"]["perceptual_scale"] = vec_to_json(options_.perceptual_scale);
+    j["options"]["min_plane_length"] = options_.min_plane_length;
+    j["options"]["perceptual_length_scales"] = options_.perceptual_length_scales;
+  }
   j["rng"] = rng_state();
   json points = json::array();
   for (Eigen::Index i = 0; i < data_.points().cols(); ++i) {
@@ -441,6 +472,15 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
       ms.max_points = static_cast<int>(int_from_json(m.at("max_points"), "max_points", 2, 10000));
     }
 
+    if (o.contains("perceptual_scale")) {
+      options.perceptual_scale =
+          vec_from_json(o.at("perceptual_scale"), "perceptual_scale", options.dims, 1e-9, 1e9);
+      if (o.contains("min_plane_length")) {
+        options.min_plane_length =
+            double_from_json(o.at("min_plane_length"), "min_plane_length", 0.0, 1e4);
+      }
+      options.perceptual_length_scales = o.value("perceptual_length_scales", false);
+    }
     PlaneSearch search(options);
     const int d = options.dims;
     const json& points = j.at("points");

@@ -41,6 +41,20 @@ struct SearchOptions {
   // plane for little cost (docs/benchmarks.md).
   int representatives = 9;
   ModelSettings model;  // priors and likelihood of the preference model
+  // Empty, or how much each coordinate changes what the user sees per unit (e.g. RMS vertex
+  // displacement in mm over the whole range). When set, the length-scale priors follow it
+  // (see set_perceptual_scale) and SPS planes are kept usable for a person: a current best
+  // near a bound becomes a corner of the plane instead of a fold, and v is not left much
+  // shorter than u (in these units), using only coordinates with room on both sides.
+  Eigen::VectorXd perceptual_scale;
+  // With a perceptual scale: the smallest length of u and of v in its units (the plane's
+  // half-diagonals; RMS mm for a body model: 12 and 20 measured alike, 30 worse), so
+  // that a plane always shows differences a person can see; and whether the length-scale
+  // priors follow the scale.
+  double min_plane_length = 12.0;
+  // Measured on the body benchmark: shorter length scales for visible directions pinned more
+  // coordinates and did not lower the gap, so it is off by default.
+  bool perceptual_length_scales = false;
 };
 
 // The largest search space a session may have (the paper explores up to ~20 dimensions; more
@@ -91,6 +105,10 @@ class PlaneSearch {
   // proposal exactly. from_json throws std::runtime_error with a readable message.
   std::string to_json() const;
   static PlaneSearch from_json(const std::string& json_text);
+
+  // Sets options().perceptual_scale (empty: none) for the next submissions. Throws
+  // std::invalid_argument on a wrong size or a non-positive or non-finite entry.
+  void set_perceptual_scale(const Eigen::VectorXd& scale);
 
   // Seconds spent inside the last submit() (absorbing the choice and proposing the plane).
   double last_submit_seconds() const { return last_submit_seconds_; }

@@ -42,6 +42,8 @@ Eigen::VectorXd ModelSettings::prior_log_mean(int dims) const {
   Eigen::VectorXd mean(dims + 1);
   mean(0) = std::log(amplitude_prior);
   mean.tail(dims).setConstant(std::log(length_scale_prior));
+  if (length_scale_factors.size() == dims)
+    mean.tail(dims).array() += length_scale_factors.array().log();
   return mean;
 }
 

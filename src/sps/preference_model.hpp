@@ -25,6 +25,10 @@ struct ModelSettings {
   // The model uses the newest preferences whose points number at most this many, so that a
   // long session stays responsive (the cost grows with the cube of the point count).
   int max_points = 300;
+  // Empty, or one factor per dimension: the prior median of length scale k becomes
+  // length_scale_prior * factor_k. Perceptual scaling sets it so that a direction that changes
+  // what the user sees faster gets a shorter length scale (PlaneSearch::set_perceptual_scale).
+  Eigen::VectorXd length_scale_factors;
 
   // Log-space prior mean of each hyperparameter [log a, log l_1..l_d].
   Eigen::VectorXd prior_log_mean(int dims) const;

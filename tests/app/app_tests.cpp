@@ -75,12 +75,17 @@ TEST_CASE("clicks zoom in and the last click is the chosen point", "[app]") {
     CHECK(session.click(path[static_cast<size_t>(i)]) == app::ClickResult::kZoomed);
   CHECK_FALSE(session.submission_pending());
   CHECK(session.view().spacing == Approx(0.125));  // 1, halved three times
+  for (const auto& p : session.cells()) CHECK_FALSE(p.clamped);
   CHECK(session.click(path[3]) == app::ClickResult::kPlaneFinished);
   CHECK(session.submission_pending());
   CHECK(session.click({0, 0}) == app::ClickResult::kIgnored);
 
   const auto sub = session.submission();
-  const auto expected = sps::chosen_point(plane, 3, path).x;
+  // The last click's cell as shown on the last grid (zoomed views stay inside the plane's
+  // square, so after the corner click the grids are not centred on the clicked cell).
+  const auto& views = session.views();
+  REQUIRE(views.size() == 5u);
+  const auto expected = sps::grid_points(plane, 3, views[3])[8].x;
   CHECK((sub.chosen - expected).norm() < 1e-12);
   CHECK((session.current_best() - expected).norm() < 1e-12);
   // One extra comparison per zoom level, the clicked cell first.
@@ -366,4 +371,193 @@ TEST_CASE("a history entry set with the sliders (no clicks) loads and undoes",
   while (session.undo_click()) {
   }
   CHECK(session.planes_done() == 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Perception-aware zooming and the body benchmark's simulated user.
+
+#include <limits>
+#include <random>
+
+#include "app/search_benchmark.hpp"
+
+namespace {
+
+// A stand-in for the body space: bodies differ by `mm_per_unit` times the Euclidean distance.
+app::PairwiseDistance euclidean_mm(double mm_per_unit) {
+  return [mm_per_unit](const std::vector<Eigen::VectorXd>& xs) {
+    const auto n = static_cast<Eigen::Index>(xs.size());
+    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (Eigen::Index j = 0; j < n; ++j) {
+        d(i, j) = mm_per_unit * (xs[static_cast<size_t>(i)] - xs[static_cast<size_t>(j)]).norm();
+      }
+    }
+    return d;
+  };
+}
+
+double min_pair(const Eigen::MatrixXd& d) {
+  double m = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < d.rows(); ++i) {
+    for (Eigen::Index j = i + 1; j < d.cols(); ++j) m = std::min(m, d(i, j));
+  }
+  return m;
+}
+
+std::vector<Eigen::VectorXd> xs_of(const std::vector<sps::GridPoint>& points) {
+  std::vector<Eigen::VectorXd> xs;
+  for (const auto& p : points) xs.push_back(p.x);
+  return xs;
+}
+
+}  // namespace
+
+TEST_CASE("the jnd user picks uniformly among the cells within D of the best", "[app][jnd]") {
+  std::mt19937_64 rng(3);
+  const std::vector<double> d{10.0, 12.0, 20.0, 14.9, 15.1, 30.0};
+  std::vector<int> counts(d.size(), 0);
+  for (int i = 0; i < 3000; ++i) ++counts[static_cast<size_t>(app::jnd_pick(d, 5.0, rng))];
+  CHECK(counts[2] == 0);
+  CHECK(counts[4] == 0);
+  CHECK(counts[5] == 0);
+  for (int i : {0, 1, 3}) {
+    CHECK(counts[static_cast<size_t>(i)] > 850);  // 1000 expected each
+    CHECK(counts[static_cast<size_t>(i)] < 1150);
+  }
+  // D = 0: the best cell only (a perfect user).
+  for (int i = 0; i < 20; ++i) CHECK(app::jnd_pick(d, 0.0, rng) == 0);
+  CHECK_THROWS(app::jnd_pick({}, 5.0, rng));
+}
+
+TEST_CASE("a grid with two identical cells is counted as showing look-alikes", "[app][jnd]") {
+  const auto distance = euclidean_mm(1000.0);
+  std::vector<Eigen::VectorXd> grid;
+  for (int i = 0; i < 9; ++i) grid.push_back(Eigen::VectorXd::Constant(3, 0.1 * i));
+  CHECK_FALSE(app::has_look_alikes(distance(grid)));
+  grid[7] = grid[2];
+  CHECK(app::has_look_alikes(distance(grid)));
+  // 4 mm apart at most is a look-alike, 6 mm is not.
+  grid[7] = grid[2] + Eigen::VectorXd::Unit(3, 0) * 0.004;
+  CHECK(app::has_look_alikes(distance(grid)));
+  grid[7] = grid[2] + Eigen::VectorXd::Unit(3, 0) * 0.006;
+  CHECK_FALSE(app::has_look_alikes(distance(grid)));
+}
+
+TEST_CASE("pinned coordinates are counted", "[app][jnd]") {
+  Eigen::VectorXd x(5);
+  x << 0.0, 0.5, 1.0, 0.9995, 0.002;
+  CHECK(app::pinned_fraction(x) == Approx(3.0 / 5.0));
+  CHECK(app::pinned_fraction(Eigen::VectorXd::Constant(4, 0.5)) == 0.0);
+}
+
+TEST_CASE("the jnd user plays a plane through the session and its grids are counted",
+          "[app][jnd]") {
+  app::Session session(small_settings());
+  const Eigen::VectorXd target = Eigen::VectorXd::Constant(4, 0.3);
+  const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+    std::vector<double> d;
+    for (const auto& x : xs) d.push_back(1000.0 * (x - target).norm());
+    return d;
+  };
+  std::mt19937_64 rng(5);
+  // Every grid counted when every pair looks alike; none when all differ.
+  const app::PairwiseDistance all_alike = [](const std::vector<Eigen::VectorXd>& xs) {
+    return Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(xs.size()),
+                                 static_cast<Eigen::Index>(xs.size()));
+  };
+  const auto first = app::play_plane_jnd(session, to_target, all_alike, 5.0, rng);
+  CHECK(first.grids == 4);
+  CHECK(first.look_alike_grids == 4);
+  CHECK(session.planes_done() == 1);
+  CHECK(session.search().iteration() == 1);
+  const auto second = app::play_plane_jnd(session, to_target, euclidean_mm(1e6), 0.0, rng);
+  CHECK(second.grids == 4);
+  CHECK(second.look_alike_grids == 0);
+  // The perfect user (D = 0) clicked the cell nearest the target at every level.
+  CHECK(session.planes_done() == 2);
+  const auto& path = session.history().back().path;
+  REQUIRE(path.size() == 4u);
+}
+
+TEST_CASE("with a perceptual distance no zoomed grid shows look-alikes", "[app][jnd]") {
+  for (double mm_per_unit : {60.0, 150.0, 400.0}) {
+    app::Session session(small_settings());
+    app::ZoomPolicy policy;
+    policy.distinct_mm = 10.0;
+    const auto distance = euclidean_mm(mm_per_unit);
+    session.set_perceptual_distance(distance, policy);
+    std::mt19937_64 rng(11);
+    int ended_early = 0;
+    for (int plane = 0; plane < 3; ++plane) {
+      while (!session.submission_pending()) {
+        const auto cells = session.cells();
+        if (session.clicks_on_plane() > 0) {
+          CHECK(min_pair(distance(xs_of(cells))) >= policy.distinct_mm);
+        }
+        for (const auto& c : cells) CHECK_FALSE(c.clamped);
+        const int index = std::uniform_int_distribution<int>(0, 8)(rng);
+        session.click({index % 3, index / 3});
+      }
+      if (session.ended_early()) {
+        ++ended_early;
+        CHECK(session.clicks_on_plane() < 4);
+      }
+      const auto sub = session.submission();
+      CHECK(sub.extra_comparisons.size() == static_cast<size_t>(session.clicks_on_plane()));
+      sps::PlaneSearch next = session.search();
+      next.submit(sub.chosen, sub.extra_comparisons);
+      session.finish_plane(std::move(next));
+    }
+    // Bodies that barely change end their planes early; clearly visible ones do not.
+    if (mm_per_unit < 100.0) CHECK(ended_early > 0);
+    if (mm_per_unit > 300.0) CHECK(ended_early == 0);
+  }
+}
+
+TEST_CASE("undo after a plane that ended early reopens it", "[app][jnd]") {
+  app::Session session(small_settings());
+  session.set_perceptual_distance(euclidean_mm(60.0));
+  int clicks = 0;
+  while (!session.submission_pending()) {
+    session.click({2, 2});
+    ++clicks;
+  }
+  CHECK(session.plane_note().find("No visible change") != std::string::npos);
+  REQUIRE(session.undo_click());
+  CHECK_FALSE(session.submission_pending());
+  CHECK_FALSE(session.ended_early());
+  CHECK(session.plane_note().empty());
+  CHECK(session.clicks_on_plane() == clicks - 1);
+}
+
+TEST_CASE("cell notes say 'edge of the search range' in plain words", "[app][jnd]") {
+  sps::GridPoint inside;
+  inside.x = Eigen::Vector3d(0.2, 0.5, 0.9);
+  CHECK(app::Session::cell_note(inside).empty());
+  sps::GridPoint edge = inside;
+  edge.x(1) = 1.0;
+  CHECK(app::Session::cell_note(edge) == "At the edge of the search range.");
+  edge.clamped = true;
+  CHECK(app::Session::cell_note(edge).find("Beyond the edge") == 0);
+}
+
+TEST_CASE("a plane that ended early is saved, loaded back and undone like any other",
+          "[app][jnd]") {
+  app::Session session(small_settings());
+  session.set_perceptual_distance(euclidean_mm(60.0));
+  for (int plane = 0; plane < 4 && session.planes_done() == plane; ++plane) {
+    while (!session.submission_pending()) session.click({2, 2});
+    const auto sub = session.submission();
+    sps::PlaneSearch next = session.search();
+    next.submit(sub.chosen, sub.extra_comparisons);
+    session.finish_plane(std::move(next));
+  }
+  bool shorter = false;
+  for (const auto& h : session.history()) shorter = shorter || h.path.size() < 4u;
+  REQUIRE(shorter);  // at least one plane ended before its fourth click
+  app::Session loaded = app::Session::from_json(session.to_json());
+  CHECK(loaded.planes_done() == session.planes_done());
+  CHECK(loaded.undo_click());
+  CHECK(loaded.clicks_on_plane() == static_cast<int>(session.history().back().path.size()) - 1);
 }

@@ -31,9 +31,29 @@ done
 "$bin" simulate --user zoom --zoom-prefs --function ackley --dims 3 --trials 1 --iterations 3 \
   --quiet > /dev/null || fail "zoom prefs"
 
+# The body benchmark: the product's session, a simulated person with a just-noticeable
+# difference, the RMS distance in mm as the gap and the two look-alike / pinned columns.
+out=$("$bin" simulate --function body --components 4 --trials 2 --iterations 3 --quiet \
+      --csv "$dir/b.csv" --per-trial-csv "$dir/bp.csv")
+echo "$out"
+[ "$(echo "$out" | grep -cE '^ +[0-9]+ ')" = 3 ] || fail "body: expected 3 iteration rows"
+head -1 "$dir/b.csv" | grep -q "^iteration,mean_gap,sd_gap,median_gap,.*,duplicate_grids,pinned_fraction$" \
+  || fail "body CSV header"
+awk -F, 'NR==1 { n=NF } NF != n { exit 1 }' "$dir/b.csv" || fail "body CSV rows do not match the header"
+[ "$(wc -l < "$dir/bp.csv")" = 7 ] || fail "body per-trial CSV should have a header and 6 rows"
+# Gaps are distances in mm: positive, never growing; fractions lie in [0, 1].
+awk -F, 'NR>1 { if ($2 <= 0 || (NR>2 && $2 > prev + 1e-9) || $7 < 0 || $7 > 1 || $8 < 0 || $8 > 1) bad=1; prev=$2 }
+         END { exit bad }' "$dir/b.csv" || fail "body gaps or fractions out of range"
+"$bin" simulate --function body --components 3 --target-betas 1 -0.5 --method sls --trials 1 \
+  --iterations 2 --quiet > /dev/null || fail "body with fixed target and sls"
+"$bin" simulate --function body --components 3 --model female --trials 1 --iterations 1 --quiet \
+  2>&1 >/dev/null | grep -qi "default" || fail "no note when falling back to the default model"
+
 # Bad input: a clear message and a non-zero exit, never a crash.
 for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2" "--bogus 1" \
-            "--function rosenbrock --optimum 0.5"; do
+            "--function rosenbrock --optimum 0.5" "--function body --user argmax" \
+            "--function body --jnd-mm -1" "--function body --target-betas 1 2 3 4 5 6 7 8 9 10 11" \
+            "--function body --model /nonexistent.npz" "--function body --grid 7"; do
   if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
   echo "$err" | grep -qi "error" || fail "no error message for: $args"
 done

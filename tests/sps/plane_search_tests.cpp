@@ -211,3 +211,94 @@ TEST_CASE("test functions reach their stated optimum and nowhere exceed it", "[f
   CHECK_THROWS_AS(sps::make_test_function("rosenbrock", 3, 0.5), std::invalid_argument);
   CHECK_THROWS_AS(sps::make_test_function("nope", 3), std::invalid_argument);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Planes for a person: with a perceptual scale (how much each coordinate changes what is seen)
+// planes stay inside the box, show visible differences along u and v, and do not fold.
+
+#include "sps/plane_construction.hpp"
+
+namespace {
+
+double scaled(const Eigen::VectorXd& x, const Eigen::VectorXd& scale) {
+  return x.cwiseProduct(scale).norm();
+}
+
+bool inside_box(const sps::Plane& p) {
+  for (double s : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
+    for (double t : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
+      const Eigen::VectorXd x = p.point(s, t);
+      if (x.minCoeff() < -1e-9 || x.maxCoeff() > 1.0 + 1e-9) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("shape_for_person: a best on a bound becomes the plane's corner", "[search][person]") {
+  const Eigen::VectorXd scale = Eigen::VectorXd::Ones(3);
+  sps::Plane p;
+  p.c = Eigen::Vector3d(0.0, 0.5, 0.5);  // on the x0 = 0 face
+  p.u = Eigen::Vector3d(0.3, 0.1, 0.0);  // x_EI = c + u
+  p.v = Eigen::Vector3d(0.0, 0.0, 0.2);
+  sps::correct_opposite_vertex(p);
+  REQUIRE(p.u_neg_scale == 0.0);  // the paper's plane folds: c - u collapses onto c
+  const Eigen::VectorXd best = p.c, x_ei = p.c + p.u;
+  sps::shape_for_person(p, scale, 0.0);
+  CHECK(p.u_neg_scale == 1.0);
+  CHECK((p.point(-1.0, -1.0) - best).norm() < 1e-12);  // x+ is a corner cell
+  CHECK((p.point(1.0, 1.0) - x_ei).norm() < 1e-12);    // x_EI the opposite one
+  CHECK(inside_box(p));
+}
+
+TEST_CASE("shape_for_person: u and v visible, perceptually orthogonal, inside the box",
+          "[search][person]") {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  Eigen::VectorXd scale(6);
+  scale << 300.0, 50.0, 40.0, 10.0, 4.0, 3.0;  // mm over the whole range, like a body model
+  for (int trial = 0; trial < 200; ++trial) {
+    sps::Plane p;
+    p.c = Eigen::VectorXd(6);
+    // Room in the visible coordinates (else no plane could be seen); anything elsewhere,
+    // bounds included.
+    for (int k = 0; k < 3; ++k) p.c(k) = 0.2 + 0.6 * uniform(rng);
+    for (int k = 3; k < 6; ++k) p.c(k) = uniform(rng) < 0.3 ? 0.0 : uniform(rng);
+    // An x_EI that differs mostly where nothing is seen.
+    Eigen::VectorXd x_ei = p.c;
+    for (int k = 3; k < 6; ++k) x_ei(k) = uniform(rng);
+    p.u = x_ei - p.c;
+    p.v = 0.001 * sps::random_orthogonal_direction(p.u, rng);
+    sps::correct_opposite_vertex(p);
+    const double min_length = 12.0;
+    sps::shape_for_person(p, scale, min_length);
+    INFO("trial " << trial << " c " << p.c.transpose() << " u " << p.u.transpose() << " v "
+                  << p.v.transpose());
+    CHECK(inside_box(p));
+    CHECK(p.u_neg_scale >= 0.5);
+    const double u_len = scaled(p.u, scale), v_len = scaled(p.v, scale);
+    CHECK(u_len >= 0.5 * min_length);
+    CHECK(v_len >= 0.5 * min_length);
+    const double cosine = p.u.cwiseProduct(scale).dot(p.v.cwiseProduct(scale)) / (u_len * v_len);
+    CHECK(std::abs(cosine) < 1e-6);
+  }
+}
+
+TEST_CASE("a perceptual scale survives the JSON round trip and is validated", "[search][person]") {
+  sps::SearchOptions o = options(3, 5);
+  o.perceptual_scale = Eigen::Vector3d(100.0, 10.0, 1.0);
+  o.min_plane_length = 8.0;
+  sps::PlaneSearch search(o);
+  search.submit(search.current_plane().c + 0.5 * search.current_plane().u);
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK(restored.options().perceptual_scale == o.perceptual_scale);
+  CHECK(restored.options().min_plane_length == 8.0);
+  auto a = search, b = restored;
+  a.submit(a.current_plane().c);
+  b.submit(b.current_plane().c);
+  CHECK(same_plane(a.current_plane(), b.current_plane()));
+  CHECK_THROWS_AS(search.set_perceptual_scale(Eigen::Vector2d(1.0, 1.0)), std::invalid_argument);
+  CHECK_THROWS_AS(search.set_perceptual_scale(Eigen::Vector3d(1.0, 0.0, 1.0)),
+                  std::invalid_argument);
+}

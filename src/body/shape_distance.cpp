@@ -1,0 +1,97 @@
+#include "body/shape_distance.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace body {
+
+namespace {
+
+constexpr float kMmPerUnitX = 6000.0f;  // beta = 6x - 3; model units are metres
+
+void check_size(const Eigen::VectorXd& x, int dims) {
+  if (x.size() != dims) {
+    throw std::invalid_argument("shape distance: a search point has " + std::to_string(x.size()) +
+                                " entries, the model " + std::to_string(dims));
+  }
+}
+
+}  // namespace
+
+ShapeDistance::ShapeDistance(const Model& model) {
+  if (model.vertex_count() == 0 || model.shapedirs.rows() != 3 * model.vertex_count()) {
+    throw std::invalid_argument("shape distance: the model '" + model.name +
+                                "' has no vertices or mismatched shape directions");
+  }
+  unit_dirs_mm_ = kMmPerUnitX * model.shapedirs;
+}
+
+Eigen::VectorXf ShapeDistance::displacement_mm(const Eigen::VectorXd& x,
+                                               const Eigen::VectorXd& origin) const {
+  check_size(x, dims());
+  check_size(origin, dims());
+  return unit_dirs_mm_ * (x - origin).cast<float>();
+}
+
+Eigen::VectorXf vertex_norms(const Eigen::VectorXf& displacement) {
+  const Eigen::Index v = displacement.size() / 3;
+  Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>> d(displacement.data(),
+                                                                               v, 3);
+  return d.rowwise().norm();
+}
+
+double ShapeDistance::rms_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+  const Eigen::VectorXf d = displacement_mm(a, b);
+  return std::sqrt(static_cast<double>(d.squaredNorm()) / static_cast<double>(vertex_count()));
+}
+
+double ShapeDistance::max_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+  return static_cast<double>(vertex_norms(displacement_mm(a, b)).maxCoeff());
+}
+
+std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                                   const Eigen::VectorXf& target_betas) const {
+  if (target_betas.size() != dims()) {
+    throw std::invalid_argument("shape distance: the target has " +
+                                std::to_string(target_betas.size()) + " betas, the model " +
+                                std::to_string(dims()));
+  }
+  // x_target = (beta + 3) / 6 may lie outside the box; the difference is all that matters.
+  const Eigen::VectorXd target = (target_betas.cast<double>().array() + 3.0) / 6.0;
+  std::vector<double> out;
+  out.reserve(xs.size());
+  for (const auto& x : xs) out.push_back(rms_mm(x, target));
+  return out;
+}
+
+Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(xs.size());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
+  if (n == 0) return out;
+  Eigen::MatrixXf diffs(dims(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    check_size(xs[static_cast<std::size_t>(i)], dims());
+    diffs.col(i) = (xs[static_cast<std::size_t>(i)] - xs.front()).cast<float>();
+  }
+  const Eigen::MatrixXf disp = unit_dirs_mm_ * diffs;  // 3V x n, relative to the first body
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = i + 1; j < n; ++j) {
+      const double d = static_cast<double>(vertex_norms(disp.col(i) - disp.col(j)).maxCoeff());
+      out(i, j) = d;
+      out(j, i) = d;
+    }
+  }
+  return out;
+}
+
+Eigen::VectorXd ShapeDistance::direction_rms_mm() const {
+  Eigen::VectorXd out(dims());
+  for (int k = 0; k < dims(); ++k) {
+    out(k) = std::sqrt(static_cast<double>(unit_dirs_mm_.col(k).squaredNorm()) /
+                       static_cast<double>(vertex_count()));
+  }
+  return out;
+}
+
+}  // namespace body

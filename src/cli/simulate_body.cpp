@@ -1,0 +1,158 @@
+#include "cli/simulate_body.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "app/search_benchmark.hpp"
+#include "app/session.hpp"
+#include "body/model_loader.hpp"
+#include "body/shape_distance.hpp"
+#include "cli/simulate_common.hpp"
+
+namespace cli {
+
+namespace {
+
+// --model FILE | neutral | female | male. Only the embedded default exists in this build;
+// the named models fall back to it with a note.
+body::Model load_benchmark_model(const ArgParser& args, int components) {
+  const std::string name = args.get_or("model", "neutral");
+  if (name == "neutral" || name == "default") return body::load_default_model(components);
+  if (name == "female" || name == "male") {
+    std::cerr << "note: no embedded '" << name
+              << "' model in this build; using the embedded default model\n";
+    return body::load_default_model(components);
+  }
+  return body::load_model(name, components);
+}
+
+// Target betas i.i.d. N(0, 1) truncated to +-2.5 (rejection), from the trial's own stream.
+Eigen::VectorXf random_target(int k, std::uint64_t seed) {
+  std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ULL + 0x7461726765ULL);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  Eigen::VectorXf betas(k);
+  for (int i = 0; i < k; ++i) {
+    float b = 0.0f;
+    do {
+      b = normal(rng);
+    } while (std::abs(b) > 2.5f);
+    betas[i] = b;
+  }
+  return betas;
+}
+
+}  // namespace
+
+int run_body_simulation(const ArgParser& args) {
+  std::set<std::string> known{"function",     "model",         "components",
+                              "target",       "target-betas",  "user",
+                              "jnd-mm",       "trials",        "iterations",
+                              "seed",         "grid",          "levels",
+                              "csv",          "per-trial-csv", "quiet",
+                              "no-adapt",     "distinct-mm",   "no-perceptual-scale",
+                              "min-plane-mm", "perceptual-ls"};
+  known.insert(search_option_names().begin(), search_option_names().end());
+  args.reject_unknown(known);
+  const std::string user = args.get_or("user", "zoom-jnd");
+  if (user != "zoom-jnd") throw ArgError("--function body: the user is zoom-jnd (--user zoom-jnd)");
+  const double jnd_mm = args.get_double("jnd-mm", 5.0);
+  const int trials = args.get_int("trials", 10);
+  const int iterations = args.get_int("iterations", 15);
+  const int seed = args.get_int("seed", 1000);
+  const int grid = args.get_int("grid", 3);
+  const int levels = args.get_int("levels", 4);
+  const int components = args.get_int("components", 10);
+  const bool quiet = args.has("quiet");
+  const bool adapt = !args.has("no-adapt");
+  const bool perceptual_scale = !args.has("no-perceptual-scale");
+  app::ZoomPolicy policy;
+  policy.distinct_mm = args.get_double("distinct-mm", policy.distinct_mm);
+  if (!(jnd_mm >= 0.0 && jnd_mm < 1e4)) throw ArgError("--jnd-mm must be in [0, 10000)");
+  if (!(policy.distinct_mm >= 0.0 && policy.distinct_mm < 1e4)) {
+    throw ArgError("--distinct-mm must be in [0, 10000)");
+  }
+  if (trials < 1 || iterations < 1) throw ArgError("--trials and --iterations must be >= 1");
+  if (grid != 3 && grid != 5) throw ArgError("--grid must be 3 or 5 (the window's grids)");
+  if (levels < 1 || levels > 8) throw ArgError("--levels must be between 1 and 8");
+  if (components < 0) throw ArgError("--components must be >= 0 (0 = all the file has)");
+  const std::string target_mode = args.get_or("target", "random");
+  if (target_mode != "random") throw ArgError("--target: use random, or give --target-betas");
+  sps::SearchOptions options = read_search_options(args);
+  options.min_plane_length = args.get_double("min-plane-mm", options.min_plane_length);
+  if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
+    throw ArgError("--min-plane-mm must be in [0, 10000)");
+  }
+  options.perceptual_length_scales = args.has("perceptual-ls");
+
+  const body::Model model = load_benchmark_model(args, components);
+  const int k = model.component_count();
+  const body::ShapeDistance distance(model);
+  Eigen::VectorXf fixed_target;
+  if (args.has("target-betas")) {
+    const auto b = args.get_doubles("target-betas");
+    if (b.empty() || static_cast<int>(b.size()) > k) {
+      throw ArgError("--target-betas: give 1 to " + std::to_string(k) + " values");
+    }
+    fixed_target = Eigen::VectorXf::Zero(k);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (!std::isfinite(b[i]) || std::abs(b[i]) > 10.0) {
+        throw ArgError("--target-betas: value " + std::to_string(i + 1) + " is not in [-10, 10]");
+      }
+      fixed_target[static_cast<Eigen::Index>(i)] = static_cast<float>(b[i]);
+    }
+  }
+  const app::PairwiseDistance pairwise = [&distance](const std::vector<Eigen::VectorXd>& xs) {
+    return distance.pairwise_max_mm(xs);
+  };
+
+  SimulationResults results(iterations, seed, true);
+  for (int trial = 0; trial < trials; ++trial) {
+    const auto trial_seed = static_cast<std::uint64_t>(seed + trial);
+    const Eigen::VectorXf target =
+        fixed_target.size() > 0 ? fixed_target : random_target(k, trial_seed);
+    const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+      return distance.rms_to_betas_mm(xs, target);
+    };
+    app::SessionSettings settings;
+    settings.components = k;
+    settings.grid_size = grid;
+    settings.zoom_levels = levels;
+    settings.seed = trial_seed;
+    app::Session session(settings, options);
+    if (perceptual_scale) session.set_perceptual_scale(distance.direction_rms_mm());
+    if (adapt) session.set_perceptual_distance(pairwise, policy);
+    std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
+    double best = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < iterations; ++it) {
+      const app::PlaneOutcome plane =
+          app::play_plane_jnd(session, to_target, pairwise, jnd_mm, user_rng);
+      best = std::min(best, to_target({plane.chosen}).front());
+      const auto i = static_cast<std::size_t>(it);
+      results.gaps[i].push_back(best);
+      results.seconds[i].push_back(plane.optimizer_seconds);
+      results.look_alike_grids[i].push_back(plane.look_alike_grids);
+      results.grids[i].push_back(plane.grids);
+      results.pinned[i].push_back(app::pinned_fraction(session.current_best()));
+    }
+    if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
+  }
+  if (!quiet) std::cerr << "\n";
+
+  std::ostringstream title;
+  title << "# " << sps::method_name(options.method) << " on body (" << model.name << ", " << k
+        << " components), user zoom-jnd (" << grid << "x" << grid << ", " << levels
+        << " levels, JND " << jnd_mm << " mm" << (adapt ? "" : ", no zoom adaptation")
+        << (perceptual_scale ? "" : ", no perceptual scale") << "), target "
+        << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "
+        << seed << "-" << (seed + trials - 1) << "; gap = RMS vertex distance (mm) of the best "
+        << "body so far";
+  write_simulation_results(args, title.str(), results);
+  return 0;
+}
+
+}  // namespace cli

@@ -1,0 +1,152 @@
+#include "cli/simulate_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "util/atomic_file.hpp"
+
+namespace cli {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+double mean(const std::vector<double>& v) {
+  double total = 0.0;
+  for (double x : v) total += x;
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN()
+                   : total / static_cast<double>(v.size());
+}
+
+double sum(const std::vector<double>& v) {
+  double total = 0.0;
+  for (double x : v) total += x;
+  return total;
+}
+
+}  // namespace
+
+const std::set<std::string>& search_option_names() {
+  static const std::set<std::string> names{
+      "method",          "current-best",       "threads",
+      "amplitude-prior", "length-scale-prior", "prior-log-variance",
+      "btl-scale",       "noise-variance",     "plane-restarts",
+      "ei-starts",       "representatives"};
+  return names;
+}
+
+sps::SearchOptions read_search_options(const ArgParser& args) {
+  sps::SearchOptions options;
+  const std::string method_text = args.get_or("method", "sps");
+  options.threads = args.get_int("threads", 2);
+  if (!sps::parse_method(method_text, options.method)) {
+    throw ArgError("--method: '" + method_text + "' is not sps, sps-random or sls");
+  }
+  options.model.amplitude_prior = args.get_double("amplitude-prior", options.model.amplitude_prior);
+  options.model.length_scale_prior =
+      args.get_double("length-scale-prior", options.model.length_scale_prior);
+  options.model.prior_log_variance =
+      args.get_double("prior-log-variance", options.model.prior_log_variance);
+  options.model.btl_scale = args.get_double("btl-scale", options.model.btl_scale);
+  options.model.noise_variance = args.get_double("noise-variance", options.model.noise_variance);
+  options.plane_restarts = args.get_int("plane-restarts", options.plane_restarts);
+  options.ei_restarts = args.get_int("ei-starts", options.ei_restarts);
+  options.representatives = args.get_int("representatives", options.representatives);
+  if (!(options.model.amplitude_prior > 0 && options.model.length_scale_prior > 0 &&
+        options.model.prior_log_variance > 0 && options.model.btl_scale > 0 &&
+        options.model.noise_variance > 0)) {
+    throw ArgError("model settings must be positive");
+  }
+  const std::string best_text = args.get_or("current-best", "posterior-mean");
+  if (best_text == "last-selection") {
+    options.current_best = sps::CurrentBest::kLastSelection;
+  } else if (best_text != "posterior-mean") {
+    throw ArgError("--current-best: use posterior-mean or last-selection");
+  }
+  return options;
+}
+
+SimulationResults::SimulationResults(int iterations, int seed, bool body)
+    : first_seed(seed),
+      gaps(static_cast<std::size_t>(iterations)),
+      seconds(static_cast<std::size_t>(iterations)) {
+  if (body) {
+    look_alike_grids.resize(static_cast<std::size_t>(iterations));
+    grids.resize(static_cast<std::size_t>(iterations));
+    pinned.resize(static_cast<std::size_t>(iterations));
+  }
+}
+
+void write_simulation_results(const ArgParser& args, const std::string& title,
+                              const SimulationResults& r) {
+  const std::size_t iterations = r.gaps.size();
+  const std::size_t trials = iterations == 0 ? 0 : r.gaps.front().size();
+  if (const auto path = args.get("per-trial-csv")) {
+    std::ostringstream out;  // written atomically below
+    out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds"
+        << (r.body() ? ",look_alike_grids,grids,pinned_fraction" : "") << "\n"
+        << std::setprecision(17);
+    for (std::size_t trial = 0; trial < trials; ++trial) {
+      for (std::size_t it = 0; it < iterations; ++it) {
+        out << trial << "," << (r.first_seed + static_cast<int>(trial)) << "," << (it + 1) << ","
+            << r.gaps[it][trial] << "," << r.seconds[it][trial];
+        if (r.body()) {
+          out << "," << r.look_alike_grids[it][trial] << "," << r.grids[it][trial] << ","
+              << r.pinned[it][trial];
+        }
+        out << "\n";
+      }
+    }
+    util::write_file_atomically(*path, out.str());
+  }
+  const auto csv_path = args.get("csv");
+  std::ostringstream csv;  // written atomically at the end
+  if (csv_path) {
+    csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds"
+        << (r.body() ? ",duplicate_grids,pinned_fraction" : "") << "\n";
+  }
+  std::cout << title << "\n";
+  std::cout << "iteration  mean_gap      sd_gap        median_gap    median_seconds"
+            << (r.body() ? "  duplicate_grids  pinned_fraction" : "") << "\n";
+  for (std::size_t it = 0; it < iterations; ++it) {
+    const auto& v = r.gaps[it];
+    const double m = mean(v);
+    double var = 0.0;
+    for (double x : v) var += (x - m) * (x - m);
+    const double sd = std::sqrt(var / static_cast<double>(v.size()));
+    const double med = median(v);
+    const double sec = median(r.seconds[it]);
+    double duplicates = 0.0, pinned = 0.0;
+    if (r.body()) {
+      const double shown = sum(r.grids[it]);
+      duplicates = shown > 0.0 ? sum(r.look_alike_grids[it]) / shown : 0.0;
+      pinned = mean(r.pinned[it]);
+    }
+    std::cout << std::setw(9) << (it + 1) << "  " << std::scientific << std::setprecision(4) << m
+              << "    " << sd << "    " << med << "    " << std::fixed << std::setprecision(4)
+              << sec;
+    if (r.body()) {
+      std::cout << "    " << std::setw(13) << duplicates << "  " << std::setw(15) << pinned;
+    }
+    std::cout << "\n";
+    if (csv_path) {
+      csv << (it + 1) << "," << std::setprecision(10) << std::scientific << m << "," << sd << ","
+          << med << "," << mean(r.seconds[it]) << "," << sec;
+      if (r.body()) csv << "," << duplicates << "," << pinned;
+      csv << "\n";
+    }
+  }
+  if (csv_path) util::write_file_atomically(*csv_path, csv.str());
+}
+
+}  // namespace cli

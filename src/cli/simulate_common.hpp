@@ -1,0 +1,38 @@
+// What the synthetic-function and the body benchmarks of `simulate` share: the optimizer's
+// options and the tables printed and written (summary CSV, per-trial CSV).
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli/arg_parser.hpp"
+#include "sps/plane_search.hpp"
+
+namespace cli {
+
+// Options every simulate run accepts (the optimizer's); the rest are the command's own.
+const std::set<std::string>& search_option_names();
+// --method, --threads, --current-best and the model settings; throws ArgError on bad values.
+sps::SearchOptions read_search_options(const ArgParser& args);
+
+struct SimulationResults {
+  int first_seed = 0;
+  // [iteration][trial]
+  std::vector<std::vector<double>> gaps;
+  std::vector<std::vector<double>> seconds;
+  // Body benchmark only (empty otherwise): grids shown with look-alike cells and grids shown,
+  // and the pinned fraction of the current best, [iteration][trial].
+  std::vector<std::vector<double>> look_alike_grids;
+  std::vector<std::vector<double>> grids;
+  std::vector<std::vector<double>> pinned;
+
+  explicit SimulationResults(int iterations, int seed, bool body);
+  bool body() const { return !pinned.empty(); }
+};
+
+// Prints the table (after `title`) and writes --csv / --per-trial-csv when asked.
+void write_simulation_results(const ArgParser& args, const std::string& title,
+                              const SimulationResults& results);
+
+}  // namespace cli
