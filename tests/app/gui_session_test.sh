@@ -54,7 +54,9 @@ click_cell() {
   [[ -n "$xy" ]] || fail "no layout for cell $1"
   # shellcheck disable=SC2086
   xdotool mousemove --sync --window "$WIN" $xy click 1
-  sleep 0.7  # the zoom animation (0.4 s) plus a frame
+  # The zoom animation (0.4 s) plus frames to spare: a click during the animation is ignored
+  # on purpose (it never counts as a second zoom step), so the next click must wait it out.
+  sleep 1.0
 }
 clicks_on_plane() { [[ "$(session_field 'len(s["path"])')" == "$1" ]]; }
 planes_done() { [[ "$(session_field 'len(s["history"])')" == "$1" ]]; }
@@ -67,6 +69,7 @@ click_cell 5
 wait_for 5 clicks_on_plane 1 || fail "first click not recorded in the autosaved session"
 xdotool key BackSpace
 wait_for 5 clicks_on_plane 0 || fail "Backspace did not undo the click"
+sleep 1.5  # the undo's zoom-out animation: clicks during it are ignored on purpose
 
 echo "== plane 1: four real clicks"
 for c in 1 6 8 3; do click_cell "$c"; done
