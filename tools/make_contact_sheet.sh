@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=${1:-./build/sequential-gallery}
-model=${2:-assets/default_body.npz}
+model=${2:-neutral}
 out=${3:-docs/default-model-contact-sheet.png}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -30,8 +30,7 @@ body::Model load_body_model(const ArgParser& args) {
     throw ArgError("--components " + std::to_string(components) + " but " + std::to_string(given) +
                    " shape values were given");
   }
-  if (const auto path = args.get("model")) return body::load_model(*path, components);
-  return body::load_default_model(components);
+  return body::resolve_model(args.get_or("model", ""), components);
 }
 
 Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {

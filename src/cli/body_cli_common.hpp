@@ -14,8 +14,8 @@ namespace cli {
 // it: the shared parser reads values until the next "--" option. The strings live in `store`.
 std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store);
 
-// --model FILE (else the embedded default model), keeping --components N (default 10, or
-// more if more betas/x values are given; 0 = all).
+// --model female|male|neutral|FILE (else the built-in neutral model), keeping --components N
+// (default 10, or more if more betas/x values are given; 0 = all).
 body::Model load_body_model(const ArgParser& args);
 
 // --betas b1 b2 ... or --x x1 x2 ... (normalized [0,1], beta = 6x - 3); none = the mean body.

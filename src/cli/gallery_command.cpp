@@ -13,7 +13,7 @@ namespace {
 
 const char* const kUsage =
     "usage: sequential-gallery [gallery] [options]\n"
-    "  --model FILE.npz        body model (default: the embedded default model)\n"
+    "  --model MODEL           female, male, neutral (built in; default neutral) or FILE.npz\n"
     "  --components K          shape components explored (default 10)\n"
     "  --grid 3|5              grid size (default 3)\n"
     "  --clicks N              zoom clicks per plane (default 4)\n"

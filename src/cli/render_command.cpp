@@ -14,11 +14,12 @@
 namespace {
 
 const char* const kUsage =
-    "usage: sequential-gallery render [--model FILE.npz] [--betas B1 B2 ...] -o OUT.png\n"
+    "usage: sequential-gallery render [--model female|male|neutral|FILE.npz] [--betas B1 B2 ...] "
+    "-o OUT.png\n"
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
     "                                 [--components K] [--samples N]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
-    "Without --model the embedded default body model is used; betas default to 0 (mean body).\n";
+    "Without --model the built-in neutral body model is used; betas default to 0 (mean body).\n";
 
 int run(int argc, char** argv_in) {
   std::vector<std::string> store;  // "-o" spelled "--output" so that --betas 1 -2 -o x.png works
@@ -50,9 +51,7 @@ int run(int argc, char** argv_in) {
   camera.set_preset(*preset);
 
   const int components = args.get_int("components", 0);
-  const auto model_path = args.get("model");
-  const body::Model model =
-      model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
+  const body::Model model = body::resolve_model(args.get_or("model", ""), components);
   const auto list = args.get_doubles("betas");
   if (static_cast<int>(list.size()) > model.component_count()) {
     throw cli::ArgError("render: " + std::to_string(list.size()) + " betas given but the model '" +
