@@ -1,7 +1,11 @@
 // `generate-default-model`: builds the default body models (template mannequin, populations,
 // PCA) and writes each as an SMPL-layout .npz (assets/body_{female,male,neutral}.npz).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
+
+#include <Eigen/Geometry>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -49,9 +53,31 @@ double largest_difference(const std::string& path, const std::vector<std::uint8_
 
 // Per component, the mean and largest vertex displacement between the mean body and the
 // body at +3 SD (the same at -3: the model is linear).
+// Mass (volume x 985 kg/m^3) and stature of the body at betas[k] = b.
+std::pair<double, double> mass_and_stature(const default_model::GeneratedModel& m, int k,
+                                           double b) {
+  const Eigen::Index V = m.v_template.rows();
+  std::vector<Eigen::Vector3d> p(V);
+  double lo = 1e9, hi = -1e9;
+  for (Eigen::Index v = 0; v < V; ++v) {
+    for (int a = 0; a < 3; ++a)
+      p[v][a] = m.v_template(v, a) + (k >= 0 ? b * m.shapedirs(3 * v + a, k) : 0.0);
+    lo = std::min(lo, p[v].y());
+    hi = std::max(hi, p[v].y());
+  }
+  double six = 0;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    six += p[m.faces(f, 0)].dot(p[m.faces(f, 1)].cross(p[m.faces(f, 2)]));
+  return {985.0 * six / 6.0, hi - lo};
+}
+
 void print_displacements(const default_model::GeneratedModel& m) {
   const Eigen::Index V = m.v_template.rows();
-  std::printf("  component: variance share, mean / max displacement at +-3 SD (mm)\n");
+  const auto [mass0, stature0] = mass_and_stature(m, -1, 0);
+  std::printf("  mean body: %.1f kg, %.3f m\n", mass0, stature0);
+  std::printf(
+      "  component: variance share, mean / max displacement at +-3 SD (mm), "
+      "mass (kg) and stature (cm) change at -3 / +3\n");
   for (Eigen::Index k = 0; k < m.shapedirs.cols(); ++k) {
     double sum = 0, largest = 0;
     Eigen::Index where = 0;
@@ -64,6 +90,10 @@ void print_displacements(const default_model::GeneratedModel& m) {
                 double(m.variance_share[k]), 1000 * sum / V, 1000 * largest,
                 double(m.v_template(where, 0)), double(m.v_template(where, 1)),
                 double(m.v_template(where, 2)));
+    const auto [mm, sm] = mass_and_stature(m, static_cast<int>(k), -3);
+    const auto [mp, sp] = mass_and_stature(m, static_cast<int>(k), 3);
+    std::printf("        mass %+6.1f / %+6.1f kg, stature %+5.1f / %+5.1f cm\n", mm - mass0,
+                mp - mass0, 100 * (sm - stature0), 100 * (sp - stature0));
   }
 }
 

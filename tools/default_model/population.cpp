@@ -75,9 +75,9 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     z = L * z;
     for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
     IndependentFactors& f = a.f;
-    for (double* x :
-         {&f.fat_distribution, &f.fat_layer, &f.muscle, &f.bust, &f.shoulder_slope, &f.posture,
-          &f.lordosis, &f.head_forward, &f.neck_length, &f.shoulders_forward, &f.knee_alignment})
+    for (double* x : {&f.fat_distribution, &f.fat_layer, &f.muscle, &f.bust, &f.shoulder_slope,
+                      &f.posture, &f.lordosis, &f.head_forward, &f.neck_length,
+                      &f.shoulders_forward, &f.knee_alignment, &f.limb_fat})
       *x = kFactorScale * normal.truncated(truncate);
     people.push_back(a);
   }
@@ -106,6 +106,7 @@ enum Field : int {
   kLordosis,
   kShouldersForward,
   kKneeAlignment,
+  kLimbFat,
   kFieldCount
 };
 constexpr int kAnchor = 0;
@@ -186,6 +187,9 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     const double extremity = w(kLeftHand) + w(kRightHand) + w(kLeftWrist) + w(kRightWrist) +
                              w(kLeftFoot) + w(kRightFoot) + 0.6 * (w(kLeftAnkle) + w(kRightAnkle));
     const double torso = std::max(0.0, 1.0 - arm - head - extremity);
+    // Soft-tissue fields fade out towards the soles: feet keep their shape (a sole pushed
+    // along its normal folds).
+    const double above_feet = smoothstep(0.05, 0.16, p.y());
     const double front = smoothstep(-0.02, 0.07, p.z());
     const double back = smoothstep(0.0, -0.08, p.z());
 
@@ -203,24 +207,25 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     // Hips, buttocks and outer thighs (gynoid fat), fading down the thighs.
     set_field(kGluteofemoral, torso * gauss(p.y(), 0.83, 0.11) * (0.55 + 0.45 * back) * n);
     // Fat layer: all over the torso and limbs, thinner on head, hands and feet.
-    set_field(kFatLayer, std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * n);
+    set_field(kFatLayer,
+              above_feet * std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * n);
     // Muscles: deltoids and upper arms, forearms, trapezius, pectorals, thighs, calves.
     const double muscle = w(kLeftShoulder) + w(kRightShoulder) +
-                          0.6 * (w(kLeftElbow) + w(kRightElbow)) + w(kLeftCollar) +
+                          0.3 * (w(kLeftElbow) + w(kRightElbow)) + w(kLeftCollar) +
                           w(kRightCollar) + w(kSpine3) * front * gauss(p.y(), 1.28, 0.06) +
                           0.8 * (w(kLeftHip) + w(kRightHip)) + 0.8 * (w(kLeftKnee) + w(kRightKnee));
-    set_field(kMuscle, muscle * n);
+    set_field(kMuscle, above_feet * muscle * n);
     // Posture: the upper body leans forward; arms move with their shoulder.
     const double lean =
         (1.0 - arm) * posture_height(p.y()) + arm * posture_height(J[kLeftShoulder].y());
     set_field(kPostureShear, Vec3(0, 0, lean));
     set_field(kHeadForward, Vec3(0, 0, (1.0 - arm) * head_forward_height(p.y())));
-    // Lordosis: buttocks back, lower back in (forwards), belly out, upper body back.
+    // Lordosis: buttocks back, lower back in (forwards), belly out.
     {
-      const double dz = (-gauss(p.y(), 0.86, 0.09) + 0.8 * gauss(p.y(), 1.04, 0.08)) * back +
-                        0.4 * gauss(p.y(), 0.98, 0.09) * front;
-      // The hollow back carries the upper body a little backwards.
-      set_field(kLordosis, Vec3(0, 0, torso * dz - 1.5 * lean));
+      const double rear = smoothstep(0.04, -0.08, p.z());
+      const double dz = (-gauss(p.y(), 0.84, 0.12) + 0.8 * gauss(p.y(), 1.05, 0.10)) * rear +
+                        0.4 * gauss(p.y(), 0.98, 0.10) * front;
+      set_field(kLordosis, Vec3(0, 0, torso * dz));
     }
     // Rounded shoulders: arms and the shoulder girdle forward.
     set_field(kShouldersForward, Vec3(0, 0, arm + 0.6 * (w(kLeftCollar) + w(kRightCollar))));
@@ -231,6 +236,14 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
                           w(kLeftAnkle) + w(kRightAnkle) + w(kLeftFoot) + w(kRightFoot);
       const double side = p.x() >= 0 ? 1.0 : -1.0;
       set_field(kKneeAlignment, Vec3(side * legs * gauss(p.y(), 0.45, 0.16), 0, 0));
+    }
+    // Peripheral versus central fat: upper arms, forearms, thighs and calves fuller, the
+    // trunk a little slimmer. Thinner segments get less, so a slim forearm never collapses.
+    {
+      const double limbs = 0.6 * (w(kLeftShoulder) + w(kRightShoulder)) +
+                           0.25 * (w(kLeftElbow) + w(kRightElbow)) + (w(kLeftHip) + w(kRightHip)) +
+                           0.6 * (w(kLeftKnee) + w(kRightKnee));
+      set_field(kLimbFat, above_feet * (limbs - 0.4 * torso * (1.0 - limbs)) * n);
     }
     basis_(3 * i + 1, kShift) = 1.0;
     if (p.y() < 0.03) sole_vertices_.push_back(i);
@@ -304,7 +317,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
     place(kLeftCollar + side, Vec3(shoulder, ts, s));
     place(kLeftShoulder + side, Vec3(shoulder, ts, s));
     // Shoulder slope: the shoulder joint 12 mm higher or lower per SD.
-    Jn[kLeftShoulder + side].y() += 0.022 * f.shoulder_slope;
+    Jn[kLeftShoulder + side].y() += 0.012 * f.shoulder_slope;
     place(kLeftElbow + side, Vec3(upper_arm, upper_arm, upper_arm));
     place(kLeftWrist + side, Vec3(forearm, forearm, forearm));
     place(kLeftHand + side, Vec3(hand, hand, hand));
@@ -344,14 +357,15 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double breast = a.female ? std::max(0.0, 0.024 + 0.006 * chest_z + 0.016 * f.bust)
                                  : std::max(0.0, 0.004 + 0.002 * f.muscle + 0.002 * chest_z);
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
-  t[kFields + kBelly] = 0.011 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
+  t[kFields + kBelly] = 0.0125 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
   t[kFields + kGluteofemoral] = -0.012 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
-  t[kFields + kFatLayer] = 0.004 * f.fat_layer;
+  t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
   t[kFields + kMuscle] = 0.006 * f.muscle + 0.002 * (a.female ? -1.0 : 1.0);
   t[kFields + kPostureShear] = 0.018 * f.posture;
   t[kFields + kHeadForward] = 0.04 * f.head_forward;
-  t[kFields + kLordosis] = 0.012 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
-  t[kFields + kShouldersForward] = 0.014 * f.shoulders_forward;
+  t[kFields + kLordosis] = 0.021 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
+  t[kFields + kShouldersForward] = 0.009 * f.shoulders_forward;
+  t[kFields + kLimbFat] = 0.0072 * f.limb_fat;
   t[kFields + kKneeAlignment] = 0.005 * f.knee_alignment;
   // Soles on y = 0.
   double lowest = 1e9;

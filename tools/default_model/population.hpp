@@ -36,6 +36,7 @@ struct IndependentFactors {
   double neck_length = 0;
   double shoulders_forward = 0;  // + rounded (protracted) shoulders, arms carried forward
   double knee_alignment = 0;     // + bow legs (knees apart), - knock knees
+  double limb_fat = 0;           // + fuller limbs for the trunk (peripheral vs central fat)
 };
 
 struct Anthropometry {
@@ -48,7 +49,7 @@ struct Anthropometry {
 // Each standard normal (of the survey's correlated measures and of the independent factors)
 // is truncated at `truncate` SD.
 std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
-                                             double truncate = 2.4);
+                                             double truncate = 2.3);
 
 // The reference person the template mannequin was built for: the average of the female and
 // male survey means (1.69 m), with all independent factors 0.
