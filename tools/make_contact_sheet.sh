@@ -61,7 +61,7 @@ for model in "${models[@]}"; do
   "$exe" render --model "$model" --size 1000x1000 --target 0.0 "$knee_y" 0.0 --distance 1.1 \
     --yaw 25 --pitch 0 -o "$tmp/knee.png" >/dev/null
   montage -label "$model: head" "$tmp/head.png" -label "hand" "$tmp/hand.png" \
-    -label "knees and feet" "$tmp/knee.png" -tile 3x1 -geometry 1000x1000+3+3 -pointsize 20 \
+    -label "knees" "$tmp/knee.png" -tile 3x1 -geometry 1000x1000+3+3 -pointsize 20 \
     -background white "docs/default-model-$model-closeup.png"
   echo "wrote docs/default-model-$model-closeup.png"
 done
