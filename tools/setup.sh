@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs everything the build, the tool and the tests need, from Debian packages (and the
-# Khronos glTF validator from npm for the export tests). Safe to re-run.
+# Khronos glTF validator, three.js and three-vrm from npm for the export tests). Safe to re-run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,6 +12,12 @@ packages=(
   mesa-utils xvfb xauth xdotool imagemagick
   python3-numpy nodejs npm
 )
+
+# The fuzz smoke run (tools/fuzz.sh, part of the test suite) needs clang and its libFuzzer /
+# sanitizer runtimes.
+if [ "${1:-}" = "--test" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -31,5 +37,12 @@ fi
 if [ "${1:-}" = "--test" ] && [ ! -d tests/validator/node_modules/gltf-validator ]; then
   echo "setup: installing the Khronos glTF validator from npm"
   npm install --silent --no-audit --no-fund --prefix tests/validator gltf-validator >/dev/null
+fi
+# three.js and three-vrm (test tools only: exports loaded as a web app would) live in
+# tests/threejs/node_modules (git-ignored), pinned by tests/threejs/package-lock.json.
+if [ "${1:-}" = "--test" ] && { [ ! -d tests/threejs/node_modules/three ] ||
+                                [ ! -d tests/threejs/node_modules/@pixiv/three-vrm ]; }; then
+  echo "setup: installing three and @pixiv/three-vrm from npm"
+  npm ci --silent --no-audit --no-fund --prefix tests/threejs >/dev/null
 fi
 echo "setup: ok"

@@ -1,42 +1,47 @@
-// The Sequential Gallery window: GLFW + Dear ImGui, a grid of offscreen-rendered bodies that
-// zooms around the clicked cell, the optimizer on a worker thread, previews, history, undo,
-// glTF export and an autosaved session.
+// The Sequential Gallery window: GLFW + Dear ImGui around a GalleryController (state, intents)
+// and a GalleryView (panels, cells). This file is the shell: the window, the frame loop in
+// the order "apply intents, prepare and draw cells, build and draw the UI", input, screenshots
+// and the bench-gui measurements.
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 
+#include "app/gallery_controller.hpp"
 #include "render/camera.hpp"
 
 namespace app {
 
 struct GalleryOptions {
-  std::optional<std::string> model_path;  // none: the embedded default (or resumed session's)
-  int components = 10;
-  int grid_size = 3;
+  std::string space = "body";         // design space kind: body | photo
+  std::optional<std::string> source;  // --model / --image; none: the built-in default
+  int components = 10;                // body: shape components explored
+  int grid_size = 0;                  // 0 = the space's default (3 body, 5 photo)
   int zoom_levels = 4;
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file
-  enum class Resume { kAsk, kYes, kNo } resume = Resume::kAsk;
+  ResumePolicy resume = ResumePolicy::kAsk;
 
-  int window_width = 1600;
-  int window_height = 1000;
+  int window_width = 0;  // 0 = as last time (else 1600x1000)
+  int window_height = 0;
   int cell_size = 0;             // cell edge in pixels; 0 = fit the window
   int samples = 4;               // MSAA samples per cell
   int animation_samples = 0;     // > 0: keep MSAA while the grid animates (costly on llvmpipe)
   float animation_scale = 1.0f;  // cell resolution factor while the grid animates
   double zoom_seconds = 1.5;
-  render::ViewPreset view = render::ViewPreset::kFront;
-  std::string save_path = "body.glb";
+  std::optional<render::ViewPreset> view;  // none: as last time
+  std::string save_path;                   // empty: as last time, else the space's default
+  std::string file_dialog = "auto";        // auto | builtin
+  bool remember_ui = true;                 // read and write ui.json beside the session
 
   std::filesystem::path screenshot_path;  // F12 writes it; see screenshot_after_frames
   int screenshot_after_frames = -1;       // >= 0: write the screenshot after that many frames
   bool quit_after_screenshot = false;
-  bool report_layout = false;
-  int optimizer_delay_ms = 0;  // testing: hold each submission back this long  // print the grid
-                               // cells' window rectangles (for scripted tests)
+  bool report_layout = false;  // print the grid cells' window rectangles (scripted tests)
+  int optimizer_delay_ms = 0;  // testing: hold each submission back this long
 
   // Benchmark: click automatically through `benchmark_clicks` cells, measure frame times
   // during the zoom animations and the launch-to-first-grid time, print them and exit.
@@ -44,6 +49,9 @@ struct GalleryOptions {
   bool benchmark_breakdown = false;  // also time the phases of each frame (adds glFinish)
   std::chrono::steady_clock::time_point launch_time = std::chrono::steady_clock::now();
 };
+
+// The controller options a window with `options` starts with (also used by the tests).
+ControllerOptions controller_options(const GalleryOptions& options);
 
 // Runs the window until it is closed; returns the process exit code.
 int run_gallery(const GalleryOptions& options);

@@ -16,10 +16,11 @@
 namespace app {
 
 struct SessionSettings {
-  std::string model_path;  // empty = the embedded default model
-  int components = 10;     // shape components explored (search dimensions)
-  int grid_size = 3;       // 3 or 5
-  int zoom_levels = 4;     // clicks per plane
+  std::string space = "body";  // the design space's kind (see app/design_space.hpp)
+  std::string model_path;      // the space's source file; empty = its built-in default
+  int components = 10;         // search dimensions (a body's shape components)
+  int grid_size = 3;           // 3 or 5
+  int zoom_levels = 4;         // clicks per plane
   std::uint64_t seed = 1;
 };
 
@@ -67,6 +68,10 @@ class Session {
   Submission submission() const;
   // Installs the search state computed from submission() (on a worker) and starts the next plane.
   void finish_plane(sps::PlaneSearch updated_search);
+  // Installs the search state computed from a point the user set directly (expert sliders,
+  // submitted as preferred over the previous best): it ends the current plane as if chosen
+  // there, with no clicks in its history entry.
+  void adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search);
 
   // Undo the last click; with no click on this plane, reopens the previous plane with its
   // clicks minus the last one. False if there is nothing to undo.

@@ -1,8 +1,5 @@
 #include "app/session_store.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -10,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "util/atomic_file.hpp"
 
 namespace app {
 
@@ -27,72 +26,97 @@ fs::path default_session_path() {
   return base / "sequential-gallery" / "session.json";
 }
 
+void save_session(const Session& session, const fs::path& path) {
+  const std::string text = session.to_json();
+  try {
+    (void)Session::from_json(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(
+        "did not save " + path.string() +
+        " (kept the last good file): the session failed its own check: " + e.what());
+  }
+  try {
+    util::write_file_atomically(path, text, /*create_folders=*/true);
+  } catch (const util::FileWriteError& e) {
+    throw std::runtime_error(std::string("cannot save the session: ") + e.what());
+  }
+}
+
 namespace {
 
-[[noreturn]] void fail(const fs::path& path, const std::string& what, int err) {
-  throw std::runtime_error("cannot save " + path.string() + ": " + what + " (" +
-                           std::strerror(err) + ")");
+fs::path previous_name(const fs::path& path, int index) {
+  fs::path p = path;
+  p += ".previous";
+  if (index > 0) p += "." + std::to_string(index);
+  return p;
 }
 
 }  // namespace
 
-void write_file_atomically(const fs::path& path, const std::string& text) {
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+fs::path set_aside_session(const fs::path& path) {
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) fail(path, "cannot create directory " + dir.string(), ec.value());
-  const fs::path tmp =
-      dir / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(path, "cannot create " + tmp.string(), errno);
-  const char* data = text.data();
-  size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, data, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      fail(path, "write failed", err);
-    }
-    data += n;
-    left -= static_cast<size_t>(n);
+  // Shift .previous.3 -> .previous.4, ..., .previous -> .previous.1; the oldest is replaced.
+  for (int i = kKeptPreviousSessions - 2; i >= 0; --i) {
+    const fs::path from = previous_name(path, i);
+    if (fs::exists(from, ec)) fs::rename(from, previous_name(path, i + 1), ec);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    fail(path, "flush failed", err);
+  const fs::path aside = previous_name(path, 0);
+  fs::rename(path, aside, ec);
+  if (ec) {
+    throw std::runtime_error("could not move " + path.string() + " to " + aside.string() + ": " +
+                             ec.message());
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    fail(path, "rename failed", err);
-  }
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
-  }
+  return aside;
 }
 
-void save_session(const Session& session, const fs::path& path) {
-  write_file_atomically(path, session.to_json());
+namespace {
+
+// Reads the whole file; returns a problem text (empty when fine).
+std::string read_session_text(const fs::path& path, std::string& text) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return path.string() + ": not a regular file";
+  // A session is a few megabytes at most; never read a huge file into memory.
+  constexpr std::uintmax_t kMaxBytes = 256u << 20;
+  const auto size = fs::file_size(path, ec);
+  if (ec) return path.string() + ": cannot read: " + ec.message();
+  if (size > kMaxBytes) {
+    return path.string() + ": too large for a session file (" + std::to_string(size) + " bytes)";
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  if (in) out << in.rdbuf();
+  if (!in) return path.string() + ": cannot read: " + std::strerror(errno);
+  text = out.str();
+  return {};
+}
+
+}  // namespace
+
+Session read_session_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw std::runtime_error(path.string() + ": no such file");
+  std::string text;
+  if (const std::string problem = read_session_text(path, text); !problem.empty()) {
+    throw std::runtime_error(problem);
+  }
+  try {
+    return Session::from_json(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
+  }
 }
 
 LoadResult load_session(const fs::path& path) {
   LoadResult result;
   std::error_code ec;
   if (!fs::exists(path, ec)) return result;
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in) {
-    result.problem = "cannot read session " + path.string() + ": " + std::strerror(errno);
+  std::string text;
+  if (std::string problem = read_session_text(path, text); !problem.empty()) {
+    result.problem = "cannot read session " + problem;
     return result;  // unreadable (permissions?): leave it where it is
   }
   try {
-    result.session = Session::from_json(text.str());
+    result.session = Session::from_json(text);
     return result;
   } catch (const std::exception& e) {
     const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(

@@ -12,12 +12,20 @@ namespace app {
 // $XDG_STATE_HOME/sequential-gallery/session.json, else ~/.local/state/sequential-gallery/...
 std::filesystem::path default_session_path();
 
-// Writes text to a temporary file beside `path`, fsyncs it, renames it over `path` and fsyncs
-// the directory: a crash at any moment leaves the old or the new file, never a torn one.
-// Throws std::runtime_error naming the file and the reason (e.g. disk full).
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
-
+// Validates the session by reading its own JSON back before writing anything (a session that
+// could not be read back is never written: the last good file stays), then writes it with the
+// project's atomic writer (util/atomic_file.hpp), creating the folder if needed. Throws
+// std::runtime_error naming the file and the reason (e.g. disk full); the old file is intact.
 void save_session(const Session& session, const std::filesystem::path& path);
+
+// How many set-aside copies of a session are kept: <name>.previous (newest), then
+// <name>.previous.1 ... <name>.previous.4 (oldest); older ones are deleted.
+constexpr int kKeptPreviousSessions = 5;
+
+// Moves the session file aside as <name>.previous, shifting the older copies down one place
+// (see kKeptPreviousSessions). Returns where the file went; throws std::runtime_error if it
+// could not be moved (the file is then left where it is).
+std::filesystem::path set_aside_session(const std::filesystem::path& path);
 
 struct LoadResult {
   std::optional<Session> session;   // set when the file existed and was valid
@@ -28,5 +36,22 @@ struct LoadResult {
 // No file: empty result. A corrupt file is renamed to "<name>.corrupt-<time>" (never
 // overwritten, never deleted) and reported in `problem`; the caller starts a fresh session.
 LoadResult load_session(const std::filesystem::path& path);
+
+// Reads and parses a session file without touching it (session-info, tests). Throws
+// std::runtime_error "<file>: <problem>" when it is missing, unreadable or unusable.
+Session read_session_file(const std::filesystem::path& path);
+
+// Whether the last save_session() through autosave failed (and why): the window shows a
+// persistent warning until a save succeeds again.
+class AutosaveStatus {
+ public:
+  void succeeded() { error_.clear(); }
+  void failed(std::string error) { error_ = std::move(error); }
+  bool failing() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+
+ private:
+  std::string error_;
+};
 
 }  // namespace app

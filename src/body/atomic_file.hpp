@@ -1,27 +1,13 @@
-// Atomic file writes: the bytes go to a temporary file next to the target, are flushed to
-// disk, and only then renamed over the target. A failure leaves the old file untouched.
+// The body library writes files through the project's one atomic writer (util/atomic_file.hpp);
+// these names keep existing callers (the glTF exporter) unchanged.
 #pragma once
 
-#include <cstddef>
-#include <filesystem>
-#include <stdexcept>
-#include <string>
+#include "util/atomic_file.hpp"
 
 namespace body {
 
-class FileWriteError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// Throws FileWriteError naming the file and the reason ("disk full", "permission denied").
-void write_file_atomically(const std::filesystem::path& path, const void* data, std::size_t size);
-inline void write_file_atomically(const std::filesystem::path& path, const std::string& bytes) {
-  write_file_atomically(path, bytes.data(), bytes.size());
-}
-
-// Writes all bytes to an open descriptor (retrying short writes and EINTR); throws
-// FileWriteError "<label>: <reason>" (ENOSPC reads "disk full"). Exposed for tests.
-void write_all(int fd, const void* data, std::size_t size, const std::string& label);
+using util::FileWriteError;
+using util::write_all;
+using util::write_file_atomically;
 
 }  // namespace body

@@ -22,16 +22,33 @@ class ModelError : public std::runtime_error {
 
 struct Model {
   std::string name;             // e.g. "SMPL (neutral)" or the file stem
-  std::string source;           // file path the model came from, or "<embedded default>"
+  std::string source;           // file path the model came from, or "<embedded neutral>" (female, male)
   Vertices v_template;          // V x 3
   Eigen::MatrixXf shapedirs;    // 3V x K: row 3*v + axis, column = component (only the K kept)
   Faces faces;                  // F x 3, indices < V
   Eigen::MatrixXf j_regressor;  // J x V (dense)
   Eigen::MatrixXf weights;      // V x J skinning weights
   std::vector<int> parents;     // J entries, -1 for the root
-  std::vector<std::string> joint_names;  // J entries (SMPL's names when J == 24)
-  int total_components = 0;              // K in the file before truncation to the explored count
-  Eigen::VectorXf variance_share;        // optional: share of variance of each kept component
+  std::vector<std::string> joint_names;  // J entries (built-in SMPL-family names by joint count)
+  int total_components = 0;        // shape components in the file before truncation (SMPL-X: not
+                                   // counting its expression components)
+  Eigen::VectorXf variance_share;  // optional: share of variance of each kept component
+
+  // SMPL-X keeps facial expressions in the same `shapedirs` array after its shape components
+  // (300 + 100 in v1.1, 10 + 10 in v1.0). They are split off here: never explored, exported
+  // only when asked for. 3V x E, the first E kept of total_expressions.
+  Eigen::MatrixXf expression_dirs;
+  int total_expressions = 0;
+
+  // Optional pose correctives (`posedirs`, 3V x P, row 3v + axis), read on demand by
+  // load_pose_correctives(). In SMPL's layout P = 9 (J-1) and the feature is (R_j - I) row by
+  // row for joints 1..J-1; other layouts (STAR's) are kept but not applied.
+  Eigen::MatrixXf posedirs;
+
+  // Optional texture coordinates (`vt`, T x 2, origin bottom left) and per-face indices into
+  // them (`ft`, F x 3, one row per row of `faces`).
+  Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor> uvs;
+  Faces uv_faces;
 
   // Joints are linear in betas too: joints = joint_template + joint_shapedirs * betas, with
   // joint_template = J_regressor * v_template and joint_shapedirs = J_regressor * shapedirs
@@ -74,7 +91,7 @@ void evaluate_batch_into(const Model& model, const std::vector<Eigen::VectorXf>&
 // display and export want; returns the applied y offset.
 float place_on_ground(BodyMesh& mesh);
 
-// SMPL's 24 standard joint names, in SMPL's joint order.
+// SMPL's 24 standard joint names, in SMPL's joint order (body/joint_names.hpp has the others).
 const std::vector<std::string>& smpl_joint_names();
 
 // The paper's mapping between the search box [0,1]^K and betas: beta = 6x - 3 (+-3 sigma).

@@ -1,17 +1,28 @@
-// glTF 2.0 writer for one body: a skinned mesh with the model's skeleton, optional morph
-// targets for the shape components, metres, +Y up, facing +Z, feet on y = 0.
+// glTF 2.0 / VRM 1.0 writer for one body: a skinned mesh with the model's skeleton (bones
+// along the limbs), optional morph targets relative to the design, metres, +Y up, facing +Z,
+// feet on y = 0.
 #include "body/gltf_export.hpp"
 
 #include <tiny_gltf.h>
 
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstring>
+#include <functional>
+#include <initializer_list>
+#include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "body/atomic_file.hpp"
+#include "body/bone_frames.hpp"
+#include "body/joint_names.hpp"
+#include "body/mesh_normals.hpp"
+#include "body/posing.hpp"
 
 namespace body {
 
@@ -123,23 +134,142 @@ tinygltf::Value number_array(const Eigen::VectorXf& v) {
   return tinygltf::Value(a);
 }
 
-tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_in,
+tinygltf::Value str(const std::string& s) {
+  return tinygltf::Value(s);
+}
+
+// glTF has one index per vertex for every attribute, so a vertex that sits on a texture seam
+// (two texture coordinates) becomes two glTF vertices. `source` maps each output vertex to the
+// model's vertex; without UVs the map is the identity.
+struct SplitMesh {
+  std::vector<std::uint32_t> source;
+  std::vector<float> uv;  // 2 per output vertex, glTF convention (origin top left)
+  Faces faces;
+};
+
+SplitMesh split_along_seams(const Model& model) {
+  SplitMesh out;
+  const auto V = static_cast<std::size_t>(model.vertex_count());
+  const bool with_uv = model.uvs.rows() > 0 && model.uv_faces.rows() == model.faces.rows();
+  if (!with_uv) {
+    out.source.resize(V);
+    std::iota(out.source.begin(), out.source.end(), 0u);
+    out.faces = model.faces;
+    return out;
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> index;
+  out.faces.resize(model.faces.rows(), 3);
+  // Vertices in first-use order of (vertex, uv) pairs; unused vertices are dropped.
+  for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const std::pair<std::uint32_t, std::uint32_t> key{model.faces(f, c), model.uv_faces(f, c)};
+      auto [it, added] = index.emplace(key, static_cast<std::uint32_t>(out.source.size()));
+      if (added) {
+        out.source.push_back(key.first);
+        out.uv.push_back(model.uvs(key.second, 0));
+        out.uv.push_back(1.0f - model.uvs(key.second, 1));  // glTF's v runs downwards
+      }
+      out.faces(f, c) = it->second;
+    }
+  }
+  return out;
+}
+
+// Rows of `m` (V x 3, model vertices) in output order.
+std::vector<float> gather(const Vertices& m, const std::vector<std::uint32_t>& source) {
+  std::vector<float> out(3 * source.size());
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    for (int a = 0; a < 3; ++a) out[3 * i + static_cast<std::size_t>(a)] = m(source[i], a);
+  }
+  return out;
+}
+
+std::array<float, 4> quaternion_of(const Eigen::Matrix3f& r) {
+  Eigen::Quaternionf q(r);
+  q.normalize();
+  if (q.w() < 0.0f) q.coeffs() = -q.coeffs();
+  return {q.x(), q.y(), q.z(), q.w()};
+}
+
+tinygltf::Value vrm_extension(const Model& model, const std::vector<std::string>& names,
+                              const ExportOptions& options) {
+  const VrmMeta& m = options.vrm;
+  // The schema's enumerations: a wrong value would make a file VRM readers reject.
+  const auto require_one_of = [](const std::string& field, const std::string& value,
+                                 std::initializer_list<const char*> allowed) {
+    std::string list;
+    for (const char* a : allowed) {
+      if (value == a) return;
+      list += (list.empty() ? "" : "|") + std::string(a);
+    }
+    throw ExportError("VRM meta '" + field + "' must be one of " + list + ", got '" + value + "'");
+  };
+  require_one_of("avatarPermission", m.avatar_permission,
+                 {"onlyAuthor", "onlySeparatelyLicensedPerson", "everyone"});
+  require_one_of("commercialUsage", m.commercial_usage,
+                 {"personalNonProfit", "personalProfit", "corporation"});
+  require_one_of("creditNotation", m.credit_notation, {"required", "unnecessary"});
+  require_one_of("modification", m.modification,
+                 {"prohibited", "allowModification", "allowModificationRedistribution"});
+  if (m.license_url.empty()) throw ExportError("VRM meta 'licenseUrl' must not be empty");
+  tinygltf::Value::Object meta;
+  meta["name"] = str(m.name.empty() ? (model.name.empty() ? "body" : model.name) : m.name);
+  meta["version"] = str(m.version);
+  tinygltf::Value::Array authors;
+  for (const auto& a : m.authors) authors.emplace_back(a);
+  if (authors.empty()) authors.emplace_back(std::string("unknown"));
+  meta["authors"] = tinygltf::Value(authors);
+  meta["licenseUrl"] = str(m.license_url);
+  meta["avatarPermission"] = str(m.avatar_permission);
+  meta["allowExcessivelyViolentUsage"] = tinygltf::Value(false);
+  meta["allowExcessivelySexualUsage"] = tinygltf::Value(false);
+  meta["commercialUsage"] = str(m.commercial_usage);
+  meta["allowPoliticalOrReligiousUsage"] = tinygltf::Value(false);
+  meta["allowAntisocialOrHateUsage"] = tinygltf::Value(false);
+  meta["creditNotation"] = str(m.credit_notation);
+  meta["allowRedistribution"] = tinygltf::Value(m.allow_redistribution);
+  meta["modification"] = str(m.modification);
+  tinygltf::Value::Object bones;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const std::string role = vrm_humanoid_bone(names[j]);
+    if (role.empty()) continue;
+    tinygltf::Value::Object bone;
+    bone["node"] = tinygltf::Value(static_cast<int>(1 + j));
+    bones[role] = tinygltf::Value(bone);
+  }
+  for (const char* required :
+       {"hips", "spine", "head", "leftUpperLeg", "leftLowerLeg", "leftFoot", "rightUpperLeg",
+        "rightLowerLeg", "rightFoot", "leftUpperArm", "leftLowerArm", "leftHand", "rightUpperArm",
+        "rightLowerArm", "rightHand"}) {
+    if (bones.count(required) == 0) {
+      throw ExportError("model '" + model.name + "' has no joint for the VRM humanoid bone '" +
+                        required + "' (VRM needs an SMPL-family skeleton)");
+    }
+  }
+  tinygltf::Value::Object humanoid;
+  humanoid["humanBones"] = tinygltf::Value(bones);
+  tinygltf::Value::Object vrm;
+  vrm["specVersion"] = str("1.0");
+  vrm["meta"] = tinygltf::Value(meta);
+  vrm["humanoid"] = tinygltf::Value(humanoid);
+  return tinygltf::Value(vrm);
+}
+
+tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_in, FileKind kind,
                                const ExportOptions& options) {
   const Eigen::Index K = model.shapedirs.cols();
-  BodyMesh mesh;
+  BodyMesh shaped;
   try {
-    mesh = evaluate(model, betas_in);
+    shaped = evaluate(model, betas_in);
   } catch (const std::invalid_argument& e) {
     throw ExportError(e.what());
   }
-  const float offset = place_on_ground(mesh);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(K);
   betas.head(betas_in.size()) = betas_in;
 
-  const auto V = static_cast<std::size_t>(mesh.vertices.rows());
   const int J = model.joint_count();
   if (J < 1 || static_cast<int>(model.parents.size()) != J ||
-      model.weights.rows() != mesh.vertices.rows() || model.weights.cols() != J) {
+      model.weights.rows() != shaped.vertices.rows() || model.weights.cols() != J) {
     throw ExportError("model '" + model.name + "' has an inconsistent skeleton (joints " +
                       std::to_string(J) + ", parents " + std::to_string(model.parents.size()) +
                       ", weights " + std::to_string(model.weights.rows()) + "x" +
@@ -150,6 +280,52 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
     if (model.parents[static_cast<std::size_t>(j)] < 0) root = j;
   }
 
+  // The rest pose: the model's own, or a T-pose made with the model's own skinning (and pose
+  // correctives); the design's mesh and joints in that pose are the file's bind pose.
+  const bool t_pose = options.rest_pose == RestPose::t ||
+                      (options.rest_pose == RestPose::automatic && kind == FileKind::vrm);
+  if (kind == FileKind::vrm && !t_pose) {
+    throw ExportError("VRM 1.0 requires a T-pose; use rest pose 't' (or automatic) for .vrm");
+  }
+  std::optional<Skinning> skin_pose;
+  bool correctives = false;
+  Vertices rest = shaped.vertices, joints = shaped.joints;
+  if (t_pose) {
+    Rotations local;
+    try {
+      local = t_pose_rotations(model, shaped.joints);
+    } catch (const ModelError& e) {
+      throw ExportError(e.what());
+    }
+    skin_pose.emplace(model, local);
+    Vertices with_correctives = shaped.vertices;
+    const Eigen::VectorXf offsets = pose_correctives(model, local);
+    if (offsets.size() == 3 * shaped.vertices.rows()) {
+      Eigen::Map<Eigen::VectorXf>(with_correctives.data(), offsets.size()) += offsets;
+      correctives = true;
+    }
+    rest = skin_pose->vertices(with_correctives, shaped.joints);
+    joints = skin_pose->joints(shaped.joints);
+  }
+  const float offset = rest.rows() ? -rest.col(1).minCoeff() : 0.0f;
+  rest.col(1).array() += offset;
+  joints.col(1).array() += offset;
+  Vertices normals;
+  compute_vertex_normals(rest, model.faces, normals);
+
+  // A shape change (vertex field dv, joint displacement dj) in the rest pose.
+  const Eigen::SparseMatrix<float, Eigen::RowMajor> regressor = model.j_regressor.sparseView();
+  auto posed_delta = [&](const float* column, const float* joint_column) {
+    const Eigen::Map<const Vertices> dv(column, model.vertex_count(), 3);
+    if (!skin_pose) return Vertices(dv);
+    Vertices dj = joint_column ? Vertices(Eigen::Map<const Vertices>(joint_column, J, 3))
+                               : Vertices(regressor * dv);
+    return skin_pose->vertices(dv, dj);
+  };
+
+  const SplitMesh split = split_along_seams(model);
+  const std::size_t V = split.source.size();
+
   tinygltf::Model doc;
   doc.asset.version = "2.0";
   doc.asset.generator = "Sequential Gallery for body shapes";
@@ -157,18 +333,18 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
 
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  const bool morph = options.morph_targets && K > 0;
-  if (morph) {
-    // Base = template (grounded with this body's offset); the weights (= betas) add the shape.
-    Vertices base = model.v_template;
-    base.col(1).array() += offset;
-    prim.attributes["POSITION"] = bb.add_vec3(base.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-  } else {
-    prim.attributes["POSITION"] =
-        bb.add_vec3(mesh.vertices.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  {
+    const auto pos = gather(rest, split.source);
+    prim.attributes["POSITION"] = bb.add_vec3(pos.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    const auto nrm = gather(normals, split.source);
+    prim.attributes["NORMAL"] = bb.add_vec3(nrm.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, false);
   }
-  prim.attributes["NORMAL"] =
-      bb.add_vec3(mesh.normals.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  if (!split.uv.empty()) {
+    const int view =
+        bb.add_view(split.uv.data(), split.uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["TEXCOORD_0"] =
+        bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, V);
+  }
 
   // Skin attributes.
   std::vector<float> wdata(4 * V);
@@ -179,7 +355,7 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   for (std::size_t v = 0; v < V; ++v) {
     std::array<int, 4> jj;
     std::array<float, 4> ww;
-    top4(model.weights, static_cast<Eigen::Index>(v), root, jj, ww);
+    top4(model.weights, static_cast<Eigen::Index>(split.source[v]), root, jj, ww);
     for (std::size_t k = 0; k < 4; ++k) {
       wdata[4 * v + k] = ww[k];
       if (small) {
@@ -202,36 +378,50 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   }
   {
     const int view =
-        bb.add_view(model.faces.data(), static_cast<std::size_t>(model.faces.size()) * 4,
+        bb.add_view(split.faces.data(), static_cast<std::size_t>(split.faces.size()) * 4,
                     TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                   static_cast<std::size_t>(model.faces.size()));
+                                   static_cast<std::size_t>(split.faces.size()));
   }
 
   tinygltf::Mesh gmesh;
   gmesh.name = model.name.empty() ? "body" : model.name;
-  if (morph) {
+  const bool morph = options.morph_targets && K > 0;
+  const Eigen::Index E = model.expression_dirs.rows() == 3 * model.v_template.rows()
+                             ? model.expression_dirs.cols()
+                             : 0;
+  if (morph || E > 0) {
+    // Every default weight is 0: the base mesh already is the design.
     tinygltf::Value::Array names;
-    auto add_target = [&](const float* data, const char* suffix, Eigen::Index k, double w) {
+    auto add_target = [&](const Vertices& delta, float scale, const std::string& label) {
+      std::vector<float> d = gather(delta, split.source);
+      for (auto& x : d) x *= scale;
       std::map<std::string, int> target;
-      target["POSITION"] = bb.add_vec3(data, V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      target["POSITION"] = bb.add_vec3(d.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
       prim.targets.push_back(target);
-      char label[48];
-      std::snprintf(label, sizeof label, "shape_%02d%s", static_cast<int>(k), suffix);
-      names.emplace_back(std::string(label));
-      gmesh.weights.push_back(w);
+      names.emplace_back(label);
+      gmesh.weights.push_back(0.0);
     };
-    Eigen::VectorXf scaled(3 * static_cast<Eigen::Index>(V));
-    for (Eigen::Index k = 0; k < K; ++k) {
-      const double b = betas[k];
+    char label[48];
+    const bool joint_cache = model.joint_shapedirs.rows() == 3 * J &&
+                             model.joint_shapedirs.cols() == model.shapedirs.cols();
+    for (Eigen::Index k = 0; morph && k < K; ++k) {
+      const Vertices delta =
+          posed_delta(model.shapedirs.col(k).data(),
+                      joint_cache ? model.joint_shapedirs.col(k).data() : nullptr);
       if (options.morph_encoding == MorphEncoding::betas) {
-        add_target(model.shapedirs.col(k).data(), "", k, b);
+        std::snprintf(label, sizeof label, "shape_%02d", static_cast<int>(k));
+        add_target(delta, 1.0f, label);
       } else {
-        scaled = 3.0f * model.shapedirs.col(k);
-        add_target(scaled.data(), "_pos", k, b > 0.0 ? b / 3.0 : 0.0);
-        scaled = -scaled;
-        add_target(scaled.data(), "_neg", k, b < 0.0 ? -b / 3.0 : 0.0);
+        std::snprintf(label, sizeof label, "shape_%02d_pos", static_cast<int>(k));
+        add_target(delta, 3.0f, label);
+        std::snprintf(label, sizeof label, "shape_%02d_neg", static_cast<int>(k));
+        add_target(delta, -3.0f, label);
       }
+    }
+    for (Eigen::Index e = 0; e < E; ++e) {
+      std::snprintf(label, sizeof label, "expr_%02d", static_cast<int>(e));
+      add_target(posed_delta(model.expression_dirs.col(e).data(), nullptr), 1.0f, label);
     }
     tinygltf::Value::Object extras;
     extras["targetNames"] = tinygltf::Value(names);
@@ -240,17 +430,39 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   gmesh.primitives.push_back(prim);
   doc.meshes.push_back(gmesh);
 
-  // Skeleton: node 0 is the skinned mesh, nodes 1..J the joints (bind pose = this body).
+  // Skeleton: node 0 is the skinned mesh, nodes 1..J the joints, each rotated so its +Y
+  // points along its bone; bind pose = the design in the rest pose.
+  std::vector<std::string> names(static_cast<std::size_t>(J));
+  for (int j = 0; j < J; ++j) {
+    const auto js = static_cast<std::size_t>(j);
+    names[js] = js < model.joint_names.size() && !model.joint_names[js].empty()
+                    ? model.joint_names[js]
+                    : "joint_" + std::to_string(j);
+  }
+  std::vector<std::string> node_names = names;
+  if (options.joint_naming == JointNaming::humanoid) {
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      const std::string role = vrm_humanoid_bone(names[j]);
+      if (!role.empty()) node_names[j] = role;
+    }
+  }
+  const std::vector<Eigen::Matrix3f> frames = bone_frames(model.parents, names, joints);
+
   tinygltf::Value::Object info;
   info["model"] = tinygltf::Value(model.name);
   info["components"] = tinygltf::Value(static_cast<int>(K));
   info["betas"] = number_array(betas);
+  info["expressions"] = tinygltf::Value(static_cast<int>(E));
   info["ground_offset_m"] = tinygltf::Value(static_cast<double>(offset));
-  info["morph_targets"] = tinygltf::Value(
-      !morph ? std::string("none (shape baked)")
-      : options.morph_encoding == MorphEncoding::betas
-          ? std::string("one per component, weight = beta")
-          : std::string("shape_NN_pos/_neg = +-3 sigma, weight = max(+-beta, 0) / 3"));
+  info["rest_pose"] = str(t_pose ? (correctives ? "T (model's skinning and pose correctives)"
+                                                : "T (model's skinning, no pose correctives)")
+                                 : "the model's own");
+  info["morph_targets"] =
+      str(!morph ? std::string("none (shape baked)")
+          : options.morph_encoding == MorphEncoding::betas
+              ? std::string("base mesh = the design; shape_NN at weight w adds w to beta NN")
+              : std::string("base mesh = the design; shape_NN_pos / _neg at weight w add +3w / -3w "
+                            "to beta NN (w = 1: 3 standard deviations)"));
   tinygltf::Node body_node;
   body_node.name = gmesh.name;
   body_node.mesh = 0;
@@ -258,27 +470,64 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   body_node.extras = tinygltf::Value(info);
   doc.nodes.push_back(body_node);
   for (int j = 0; j < J; ++j) {
+    const auto js = static_cast<std::size_t>(j);
     tinygltf::Node n;
-    n.name = static_cast<std::size_t>(j) < model.joint_names.size()
-                 ? model.joint_names[static_cast<std::size_t>(j)]
-                 : "joint_" + std::to_string(j);
-    const int p = model.parents[static_cast<std::size_t>(j)];
-    Eigen::Vector3f t = mesh.joints.row(j).transpose();
-    if (p >= 0) t -= mesh.joints.row(p).transpose();
+    n.name = node_names[js];
+    const int p = model.parents[js];
+    Eigen::Vector3f t = joints.row(j).transpose();
+    Eigen::Matrix3f r = frames[js];
+    if (p >= 0) {
+      const Eigen::Matrix3f& rp = frames[static_cast<std::size_t>(p)];
+      t = rp.transpose() * (t - joints.row(p).transpose());
+      r = rp.transpose() * r;
+    }
     n.translation = {t.x(), t.y(), t.z()};
+    const auto q = quaternion_of(r);
+    n.rotation = {q[0], q[1], q[2], q[3]};
     doc.nodes.push_back(n);
   }
   for (int j = 0; j < J; ++j) {
     const int p = model.parents[static_cast<std::size_t>(j)];
     if (p >= 0) doc.nodes[static_cast<std::size_t>(1 + p)].children.push_back(1 + j);
   }
+  // Inverse bind matrix = inverse of the joint's rest world transform [R | p]: [R^T | -R^T p].
+  // The rotations are written as quaternions above, so the matrices are built from the same
+  // (normalised) quaternions chained down the hierarchy to match what clients compute.
+  std::vector<Eigen::Matrix3f> world(static_cast<std::size_t>(J));
+  std::vector<Eigen::Vector3f> world_t(static_cast<std::size_t>(J));
+  {
+    std::vector<char> done(static_cast<std::size_t>(J), 0);
+    std::function<void(int)> resolve = [&](int j) {
+      const auto js = static_cast<std::size_t>(j);
+      if (done[js]) return;
+      const auto& n = doc.nodes[1 + js];
+      const Eigen::Matrix3f r =
+          Eigen::Quaternionf(static_cast<float>(n.rotation[3]), static_cast<float>(n.rotation[0]),
+                             static_cast<float>(n.rotation[1]), static_cast<float>(n.rotation[2]))
+              .toRotationMatrix();
+      const Eigen::Vector3f t(static_cast<float>(n.translation[0]),
+                              static_cast<float>(n.translation[1]),
+                              static_cast<float>(n.translation[2]));
+      const int p = model.parents[js];
+      if (p < 0) {
+        world[js] = r;
+        world_t[js] = t;
+      } else {
+        resolve(p);
+        world[js] = world[static_cast<std::size_t>(p)] * r;
+        world_t[js] = world_t[static_cast<std::size_t>(p)] + world[static_cast<std::size_t>(p)] * t;
+      }
+      done[js] = 1;
+    };
+    for (int j = 0; j < J; ++j) resolve(j);
+  }
   std::vector<float> ibm(16 * static_cast<std::size_t>(J), 0.0f);
   for (int j = 0; j < J; ++j) {
-    float* m = ibm.data() + 16 * j;
-    m[0] = m[5] = m[10] = m[15] = 1.0f;  // column-major: translation in m[12..14]
-    m[12] = -mesh.joints(j, 0);
-    m[13] = -mesh.joints(j, 1);
-    m[14] = -mesh.joints(j, 2);
+    const auto js = static_cast<std::size_t>(j);
+    Eigen::Matrix4f inv = Eigen::Matrix4f::Identity();
+    inv.topLeftCorner<3, 3>() = world[js].transpose();
+    inv.topRightCorner<3, 1>() = -(world[js].transpose() * world_t[js]);
+    std::memcpy(ibm.data() + 16 * js, inv.data(), 16 * sizeof(float));  // column-major
   }
   tinygltf::Skin skin;
   skin.name = "skeleton";
@@ -295,6 +544,10 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   doc.scenes.push_back(scene);
   doc.defaultScene = 0;
   doc.asset.extras = tinygltf::Value(info);
+  if (kind == FileKind::vrm) {
+    doc.extensionsUsed.push_back("VRMC_vrm");
+    doc.extensions["VRMC_vrm"] = vrm_extension(model, names, options);
+  }
   return doc;
 }
 
@@ -306,11 +559,21 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, bool binary,
+int morph_target_count(const Model& model, const ExportOptions& options) {
+  const int K = model.component_count();
+  const int shape = !options.morph_targets                           ? 0
+                    : options.morph_encoding == MorphEncoding::betas ? K
+                                                                     : 2 * K;
+  const bool expressions = model.expression_dirs.rows() == 3 * model.v_template.rows();
+  return shape + (expressions ? static_cast<int>(model.expression_dirs.cols()) : 0);
+}
+
+std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, FileKind kind,
                               const ExportOptions& options) {
-  tinygltf::Model doc = build_document(model, betas, options);
+  tinygltf::Model doc = build_document(model, betas, kind, options);
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
+  const bool binary = kind != FileKind::gltf;
   if (!writer.WriteGltfSceneToStream(&doc, out, !binary, binary)) {
     throw ExportError("tinygltf could not serialise the document");
   }
@@ -320,13 +583,16 @@ std::string export_gltf_bytes(const Model& model, const Eigen::VectorXf& betas, 
 void export_gltf(const Model& model, const Eigen::VectorXf& betas,
                  const std::filesystem::path& path, const ExportOptions& options) {
   const std::string ext = lower_extension(path);
-  if (ext != ".glb" && ext != ".gltf") {
+  if (ext != ".glb" && ext != ".gltf" && ext != ".vrm") {
     throw ExportError(path.string() + ": unknown extension '" + ext +
-                      "' (use .glb for binary glTF or .gltf for JSON)");
+                      "' (use .glb for binary glTF, .gltf for JSON or .vrm for a VRM 1.0 avatar)");
   }
+  const FileKind kind = ext == ".glb"    ? FileKind::glb
+                        : ext == ".gltf" ? FileKind::gltf
+                                         : FileKind::vrm;
   std::string bytes;
   try {
-    bytes = export_gltf_bytes(model, betas, ext == ".glb", options);
+    bytes = export_gltf_bytes(model, betas, kind, options);
   } catch (const ExportError& e) {
     throw ExportError(path.string() + ": " + e.what());
   }

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "body/joint_names.hpp"
 #include "body/model_validation.hpp"
 #include "body/npz_reader.hpp"
+#include "util/utf8.hpp"
 
 #if defined(SG_HAVE_DEFAULT_MODEL)
 extern "C" const unsigned char sg_model_female_begin[];
@@ -71,7 +73,9 @@ std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
 }
 
 std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) {
-  if (J == 24) return smpl_joint_names();
+  if (const auto* builtin = builtin_joint_names(J); builtin && !npz.contains("joint_names")) {
+    return *builtin;
+  }
   std::vector<std::string> names;
   if (npz.contains("joint_names")) {
     const NpyArray a = npz.read("joint_names");
@@ -86,6 +90,8 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
     }
     names = a.to_strings();
   }
+  // Names go into glTF (JSON) and the window: invalid bytes become U+FFFD here, once.
+  for (auto& n : names) n = util::to_valid_utf8(n);
   for (std::size_t j = 0; j < J; ++j) {
     if (names.size() <= j) names.push_back("joint_" + std::to_string(j));
     if (names[j].empty()) names[j] = "joint_" + std::to_string(j);
@@ -93,14 +99,72 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
   return names;
 }
 
-Model load_from_archive(const NpzArchive& npz, int components, const std::string& model_name) {
+// SMPL-X (55 joints) stores its expression components after the shape components in
+// `shapedirs`: 300 + 100 in v1.1 (400 columns), 10 + 10 in v1.0 (20 columns). Any other
+// skeleton has shape components only.
+long long shape_columns(long long joints, long long columns) {
+  if (joints != 55) return columns;
+  return columns > 300 ? 300 : (columns + 1) / 2;
+}
+
+using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+void read_posedirs(const NpzArchive& npz, Model& m) {
+  const long long V = m.vertex_count();
+  if (!npz.contains("posedirs")) return;
+  const NpyArray a = npz.read("posedirs");
+  if (a.header.needs_pickle()) return;
+  require_shape(npz, "posedirs", a.header, {V, 3, -1},
+                "(V, 3, P) with V = " + std::to_string(V) + " from v_template");
+  const long long P = static_cast<long long>(a.header.shape[2]);
+  const auto pd = finite_floats(npz, "posedirs", a);
+  m.posedirs = Eigen::Map<const RowMat>(pd.data(), 3 * V, P);
+}
+
+void read_optional_arrays(const NpzArchive& npz, Model& m) {
+  if (npz.contains("vt") != npz.contains("ft")) {
+    fail_array(npz, npz.contains("vt") ? "vt" : "ft",
+               "texture coordinates need both 'vt' (T, 2) and 'ft' (F, 3); the other is missing");
+  }
+  if (npz.contains("vt")) {
+    const NpyArray vt = npz.read("vt");
+    const NpyArray ft = npz.read("ft");
+    if (vt.header.needs_pickle() || ft.header.needs_pickle()) return;
+    require_shape(npz, "vt", vt.header, {-1, 2}, "(T, 2)");
+    const long long T = static_cast<long long>(vt.header.shape[0]);
+    if (T < 1) fail_array(npz, "vt", "has no texture coordinates");
+    require_shape(npz, "ft", ft.header, {m.faces.rows(), 3},
+                  "(F, 3) with F = " + std::to_string(m.faces.rows()) + " from f");
+    const auto uv = finite_floats(npz, "vt", vt);
+    const auto idx = integer_values(npz, "ft", ft);
+    m.uvs =
+        Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor>>(uv.data(), T, 2);
+    m.uv_faces.resize(m.faces.rows(), 3);
+    for (std::size_t i = 0; i < idx.size(); ++i) {
+      if (idx[i] < 0 || idx[i] >= T) {
+        fail_array(npz, "ft",
+                   "texture index " + std::to_string(idx[i]) + " at " +
+                       index_string(ft.header.shape, i) + " is out of range [0, " +
+                       std::to_string(T) + ")");
+      }
+      m.uv_faces.data()[i] = static_cast<std::uint32_t>(idx[i]);
+    }
+  }
+}
+
+Model load_from_archive(const NpzArchive& npz, int components, const std::string& model_name,
+                        int expressions) {
+  if (expressions < 0) {
+    throw ModelError(npz.label() + ": the number of expression components must be >= 0, got " +
+                     std::to_string(expressions));
+  }
   if (components < 0) {
     throw ModelError(npz.label() + ": the number of shape components must be >= 0 (0 = all), got " +
                      std::to_string(components));
   }
   Model m;
-  m.name = model_name;
-  m.source = npz.label();
+  m.name = util::to_valid_utf8(model_name);  // file names need not be UTF-8
+  m.source = util::to_valid_utf8(npz.label());
 
   // v_template (V x 3)
   NpyArray a = read_required_array(npz, "v_template");
@@ -116,15 +180,10 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
   // shapedirs (V x 3 x K) -> 3V x K, row 3v + axis
   a = read_required_array(npz, "shapedirs");
   require_shape(npz, "shapedirs", a.header, {V, 3, -1}, "(V, 3, K)" + vdesc);
-  const long long K = static_cast<long long>(a.header.shape[2]);
-  if (K < 1) fail_array(npz, "shapedirs", "has no shape components (K = 0)");
-  m.total_components = static_cast<int>(K);
-  const long long keep = (components == 0 || components > K) ? K : components;
-  {
-    const auto sd = finite_floats(npz, "shapedirs", a);
-    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    m.shapedirs = Eigen::Map<const RowMat>(sd.data(), 3 * V, K).leftCols(keep);
-  }
+  const long long columns = static_cast<long long>(a.header.shape[2]);
+  if (columns < 1) fail_array(npz, "shapedirs", "has no shape components (K = 0)");
+  // Kept as floats until J_regressor says whether this is SMPL-X (shape + expressions).
+  std::vector<float> sd = finite_floats(npz, "shapedirs", a);
   a = NpyArray{};
 
   // f (F x 3), indices in [0, V)
@@ -152,9 +211,19 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
   if (J < 1) fail_array(npz, "J_regressor", "has no joints");
   {
     const auto jr = finite_floats(npz, "J_regressor", a);
-    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     m.j_regressor = Eigen::Map<const RowMat>(jr.data(), J, V);
   }
+  const long long K = shape_columns(J, columns);
+  m.total_components = static_cast<int>(K);
+  m.total_expressions = static_cast<int>(columns - K);
+  const long long keep = (components == 0 || components > K) ? K : components;
+  const long long keep_expr = std::min<long long>(expressions, columns - K);
+  {
+    const Eigen::Map<const RowMat> all(sd.data(), 3 * V, columns);
+    m.shapedirs = all.leftCols(keep);
+    m.expression_dirs = all.middleCols(K, keep_expr);
+  }
+  sd = std::vector<float>();
 
   // weights (V x J)
   a = read_required_array(npz, "weights");
@@ -162,13 +231,13 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
                 "(V, J)" + vdesc + " and J = " + std::to_string(J) + " from J_regressor");
   {
     const auto w = finite_floats(npz, "weights", a);
-    using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     m.weights = Eigen::Map<const RowMat>(w.data(), V, J);
   }
   a = NpyArray{};
 
   m.parents = read_parents(npz, J);
   m.joint_names = read_joint_names(npz, static_cast<std::size_t>(J));
+  read_optional_arrays(npz, m);
 
   // Optional: variance_share (K,)
   if (npz.contains("variance_share")) {
@@ -185,29 +254,27 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
 
 }  // namespace
 
-const std::vector<std::string>& smpl_joint_names() {
-  static const std::vector<std::string> names = {
-      "pelvis",     "left_hip",    "right_hip",    "spine1",      "left_knee",     "right_knee",
-      "spine2",     "left_ankle",  "right_ankle",  "spine3",      "left_foot",     "right_foot",
-      "neck",       "left_collar", "right_collar", "head",        "left_shoulder", "right_shoulder",
-      "left_elbow", "right_elbow", "left_wrist",   "right_wrist", "left_hand",     "right_hand"};
-  return names;
+void load_pose_correctives(Model& model) {
+  std::error_code ec;
+  if (model.posedirs.size() > 0 || !std::filesystem::is_regular_file(model.source, ec)) return;
+  const NpzArchive npz = NpzArchive::open_file(model.source);
+  read_posedirs(npz, model);
 }
 
-Model load_model(const std::filesystem::path& path, int components) {
+Model load_model(const std::filesystem::path& path, int components, int expressions) {
   // A built-in model's name stands for that model unless a file of that name exists (sessions
   // and the window store the --model text as a path).
   if (is_builtin_model_name(path.string()) && !std::filesystem::exists(path))
     return load_builtin_model(path.string(), components);
   const NpzArchive npz = NpzArchive::open_file(path);
-  return load_from_archive(npz, components, path.stem().string());
+  return load_from_archive(npz, components, path.stem().string(), expressions);
 }
 Model load_model_from_memory(const void* data, std::size_t size, const std::string& label,
-                             int components) {
+                             int components, int expressions) {
   const NpzArchive npz = NpzArchive::open_memory(data, size, label);
   std::string name = std::filesystem::path(label).stem().string();
   if (name.empty()) name = label;
-  return load_from_archive(npz, components, name);
+  return load_from_archive(npz, components, name, expressions);
 }
 
 const std::vector<std::string>& builtin_model_names() {
@@ -236,7 +303,7 @@ Model load_builtin_model(const std::string& name, int components) {
     end = sg_model_male_end;
   }
   Model m = load_model_from_memory(begin, static_cast<std::size_t>(end - begin),
-                                   "<embedded " + name + ">", components);
+                                   "<embedded " + name + ">", components, 0);
   m.name = name;
   return m;
 #else

@@ -127,11 +127,12 @@ void parse_descr(const std::string& descr, NpyHeader& h) {
       h.item_size = 1;
       break;
     case 'S':
-      h.item_size = n;
-      break;
     case 'U':
+      // Zero-width strings hold no bytes, so a huge shape would pass the size check against
+      // the file and then allocate one string per element.
+      if (n == 0) throw NpyError("unsupported dtype '" + descr + "' (zero-width strings)");
       if (n > std::numeric_limits<std::size_t>::max() / 4) throw NpyError("dtype too large");
-      h.item_size = 4 * n;
+      h.item_size = h.kind == 'S' ? n : 4 * n;
       break;
     case 'O':
       h.item_size = 8;
@@ -398,7 +399,9 @@ std::vector<std::string> NpyArray::to_strings() const {
       for (std::size_t k = 0; k + 4 <= n; k += 4) {
         const auto cp = static_cast<std::uint32_t>(load_uint(p + k, 4, swap));
         if (cp == 0) break;
-        if (cp < 0x80) {
+        if (cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+          str += "\xEF\xBF\xBD";  // U+FFFD: not a Unicode scalar value
+        } else if (cp < 0x80) {
           str += static_cast<char>(cp);
         } else if (cp < 0x800) {
           str += static_cast<char>(0xC0 | (cp >> 6));

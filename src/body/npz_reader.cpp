@@ -141,6 +141,11 @@ NpzArchive NpzArchive::open_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw ModelError(a.label_ + ": file not found");
   if (std::filesystem::is_directory(path, ec)) throw ModelError(a.label_ + ": is a directory");
+  // Devices and pipes (/dev/zero, /dev/stdin) cannot be zip archives: libzip needs to seek.
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw ModelError(a.label_ +
+                     ": not a regular file (a device, pipe or socket); give an .npz file");
+  }
   a.impl_ = std::make_unique<Impl>();
   int err = 0;
   errno = 0;

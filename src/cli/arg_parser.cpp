@@ -1,24 +1,70 @@
 #include "cli/arg_parser.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
+
+#include "util/utf8.hpp"
 
 namespace cli {
 
 namespace {
 
-double parse_double(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
+// Plain decimal notation only: [+-]digits[.digits][e[+-]digits]. strtod alone would also take
+// "0x10" (16), "inf", "nan" and "1e" prefixes, none of which a user means as a number here.
+bool is_decimal_number(const std::string& t) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t start = i;
+    while (i < t.size() && t[i] >= '0' && t[i] <= '9') ++i;
+    return i - start;
+  };
+  if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < t.size() && t[i] == '.') {
+    ++i;
+    mantissa += digits();
   }
-  if (used != text.size() || text.empty() || !std::isfinite(value)) {
-    throw ArgError("--" + option + ": '" + text + "' is not a finite number");
+  if (mantissa == 0) return false;
+  if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+    ++i;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == t.size();
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+  if (!is_decimal_number(text)) {
+    throw ArgError("--" + option + ": '" + text + "' is not a number (write it like 1.5 or -2e-3)");
+  }
+  errno = 0;
+  const double value = std::strtod(text.c_str(), nullptr);
+  // Underflow (1e-320) is a legal tiny number; only overflow is out of range.
+  if (!std::isfinite(value)) {
+    throw ArgError("--" + option + ": '" + text + "' is too large (beyond double precision)");
   }
   return value;
+}
+
+// An argument that starts with '-' is a value, not an option, when it reads as a number
+// ("-1.5", "-.5", "-inf"): then a bad number gets the number's error, not "needs a value".
+bool looks_like_option(const char* a) {
+  if (a[0] != '-' || a[1] == '\0') return false;
+  if (a[1] == '.' || (a[1] >= '0' && a[1] <= '9')) return false;
+  const std::string rest(a + 1);
+  for (const char* word : {"inf", "infinity", "nan"}) {
+    if (rest.size() == std::string(word).size() &&
+        std::equal(rest.begin(), rest.end(), word, [](char x, char y) {
+          return std::tolower(static_cast<unsigned char>(x)) == y;
+        })) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -39,10 +85,7 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
       } else if (multi.count(name) != 0) {
         // Consume until the next option; negative numbers ("-1.5") are values, not options.
         // Stop at the next option ("--x", "-o", "-h"); "-1.5" and "-.5" are values.
-        const auto is_option = [](const char* a) {
-          return a[0] == '-' && a[1] != '\0' && a[1] != '.' && (a[1] < '0' || a[1] > '9');
-        };
-        while (i + 1 < argc && !is_option(argv[i + 1])) {
+        while (i + 1 < argc && !looks_like_option(argv[i + 1])) {
           if (!value.empty()) value += ' ';
           value += argv[++i];
         }
@@ -83,13 +126,20 @@ std::string ArgParser::require(const std::string& name) const {
   return *value;
 }
 
+std::string ArgParser::get_text(const std::string& name, const std::string& fallback) const {
+  const std::string value = get_or(name, fallback);
+  if (!util::is_valid_utf8(value)) {
+    throw ArgError("--" + name + ": the text is not valid UTF-8 (check the terminal's encoding)");
+  }
+  return value;
+}
+
 int ArgParser::get_int(const std::string& name, int fallback) const {
   const auto value = get(name);
   if (!value) return fallback;
   const double d = parse_double(name, *value);
-  if (d != std::floor(d) || std::abs(d) > 1e9) {
-    throw ArgError("--" + name + ": '" + *value + "' is not an integer");
-  }
+  if (d != std::floor(d)) throw ArgError("--" + name + ": '" + *value + "' is not an integer");
+  if (std::abs(d) > 1e9) throw ArgError("--" + name + ": '" + *value + "' is out of range");
   return static_cast<int>(d);
 }
 
@@ -102,13 +152,25 @@ std::vector<double> ArgParser::get_doubles(const std::string& name) const {
   std::vector<double> out;
   const auto value = get(name);
   if (!value) return out;
-  std::string text = *value;
-  for (char& ch : text) {
-    if (ch == ',') ch = ' ';
+  // Values are separated by commas and/or spaces; an empty field ("1,,2", "1,") is an error,
+  // not silently skipped.
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = value->find(',', start);
+    std::istringstream field(
+        value->substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    std::string token;
+    int tokens = 0;
+    while (field >> token) {
+      out.push_back(parse_double(name, token));
+      ++tokens;
+    }
+    if (tokens == 0 && value->find(',') != std::string::npos) {
+      throw ArgError("--" + name + ": empty value between commas in '" + *value + "'");
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
-  std::istringstream in(text);
-  std::string token;
-  while (in >> token) out.push_back(parse_double(name, token));
   return out;
 }
 

@@ -26,6 +26,9 @@ class ArgParser {
   std::optional<std::string> get(const std::string& name) const;
   std::string get_or(const std::string& name, const std::string& fallback) const;
   std::string require(const std::string& name) const;
+  // A value that is free text (a name, not a path): must be valid UTF-8, since it ends up in
+  // JSON; throws ArgError otherwise.
+  std::string get_text(const std::string& name, const std::string& fallback) const;
   int get_int(const std::string& name, int fallback) const;
   double get_double(const std::string& name, double fallback) const;
   std::vector<double> get_doubles(const std::string& name) const;  // "1,2 3" -> {1,2,3}

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/gallery_app.hpp"
+#include "app/gallery_layout.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
@@ -18,6 +19,7 @@ const char* const kUsage =
     "                                    [--samples N] [--animation-samples N] [--model "
     "female|male|neutral|FILE]\n"
     "                                    [--animation-scale F] [--breakdown]\n"
+    "                                    [--space body|photo] [--image FILE]\n"
     "Opens the viewer, clicks N cells automatically (default 12, i.e. 3 planes), and prints\n"
     "median / 95th percentile frame times of the zoom animations and the launch-to-first-grid\n"
     "time. Uses a throw-away session file. Example without a display:\n"
@@ -31,17 +33,19 @@ int run(int argc, char** argv) {
     return 0;
   }
   args.reject_unknown({"help", "breakdown", "clicks", "cell-size", "grid", "samples",
-                       "animation-samples", "animation-scale", "model"});
+                       "animation-samples", "animation-scale", "model", "space", "image"});
   app::GalleryOptions o;
   o.launch_time = launch;
   cli::read_gallery_display_options(args, 400, o);
   o.benchmark_clicks = args.get_int("clicks", 12);
   o.benchmark_breakdown = args.has("breakdown");
   if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");
-  const int grid_px = o.grid_size * o.cell_size + (o.grid_size - 1) * 6;
-  o.window_width = grid_px + 16 + 548;
-  o.window_height = grid_px + 50;
-  o.resume = app::GalleryOptions::Resume::kNo;
+  const int n = o.grid_size > 0 ? o.grid_size : (o.space == "photo" ? 5 : 3);
+  const auto [w, h] = app::window_size_for_cells(n, o.cell_size);
+  o.window_width = w;
+  o.window_height = h;
+  o.remember_ui = false;
+  o.resume = app::ResumePolicy::kNo;
   o.session_path = std::filesystem::temp_directory_path() /
                    ("sg-bench-gui-" + std::to_string(::getpid()) + ".json");
   const int rc = app::run_gallery(o);

@@ -1,11 +1,23 @@
 #include "cli/body_cli_common.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "body/model_loader.hpp"
 
 namespace cli {
+
+namespace {
+
+std::string plain(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+}  // namespace
 
 std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store) {
   store.assign(argv, argv + argc);
@@ -30,7 +42,33 @@ body::Model load_body_model(const ArgParser& args) {
     throw ArgError("--components " + std::to_string(components) + " but " + std::to_string(given) +
                    " shape values were given");
   }
-  return body::resolve_model(args.get_or("model", ""), components);
+  const int expressions = args.get_int("expressions", 0);
+  if (expressions < 0) throw ArgError("--expressions must be >= 0");
+  const auto path = args.get("model");
+  // female, male, neutral (built in) or a file; no --model = the built-in neutral model.
+  const body::Model model = path ? body::load_model(*path, components, expressions)
+                                 : body::load_default_model(components);
+  // The loader keeps what the file has; asking for more is a mistake worth saying.
+  check_component_count(args, model);
+  if (expressions > model.total_expressions) {
+    const std::string what = path ? "'" + *path + "'" : std::string("the default model");
+    throw ArgError(
+        "--expressions " + std::to_string(expressions) + ": " + what + " has " +
+        (model.total_expressions == 0
+             ? std::string("no expression components (only SMPL-X has them)")
+             : "only " + std::to_string(model.total_expressions) + " expression components"));
+  }
+  return model;
+}
+
+void check_component_count(const ArgParser& args, const body::Model& model) {
+  if (!args.has("components")) return;
+  const int asked = args.get_int("components", 0);
+  if (asked > model.total_components) {
+    throw ArgError("--components " + std::to_string(asked) + ": the model '" + model.name +
+                   "' has only " + std::to_string(model.total_components) +
+                   " shape components (0 = all of them)");
+  }
 }
 
 Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
@@ -41,8 +79,8 @@ Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
     Eigen::VectorXd xv(static_cast<Eigen::Index>(x.size()));
     for (std::size_t i = 0; i < x.size(); ++i) {
       if (x[i] < 0.0 || x[i] > 1.0) {
-        throw ArgError("--x: value " + std::to_string(i + 1) + " (" + std::to_string(x[i]) +
-                       ") is outside [0, 1]");
+        throw ArgError("--x: value number " + std::to_string(i + 1) + " is " + plain(x[i]) +
+                       ", which is outside [0, 1]");
       }
       xv[static_cast<Eigen::Index>(i)] = x[i];
     }
@@ -50,14 +88,29 @@ Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
   } else {
     const auto b = args.get_doubles("betas");
     betas.resize(static_cast<Eigen::Index>(b.size()));
-    for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      // Betas are in standard deviations; far beyond +-10 the body collapses or explodes.
+      if (std::abs(b[i]) > kMaxAbsBeta) {
+        throw ArgError("--betas: value number " + std::to_string(i + 1) + " is " + plain(b[i]) +
+                       ", which is outside [-10, 10] (betas are in standard deviations)");
+      }
       betas[static_cast<Eigen::Index>(i)] = static_cast<float>(b[i]);
+    }
   }
   if (betas.size() > model.component_count()) {
     throw ArgError(std::to_string(betas.size()) + " shape values given but the model '" +
                    model.name + "' has " + std::to_string(model.component_count()) + " components");
   }
   return betas;
+}
+
+void require_output_file(const std::string& path) {
+  std::error_code ec;
+  if (path.empty()) throw ArgError("-o needs a file name");
+  if (path.back() == '/' || std::filesystem::is_directory(path, ec)) {
+    throw ArgError("-o " + path + " is a folder; give a file name, e.g. " +
+                   (std::filesystem::path(path) / "body.glb").string());
+  }
 }
 
 std::string format_betas(const Eigen::VectorXf& betas) {

@@ -15,15 +15,27 @@ namespace cli {
 std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store);
 
 // --model female|male|neutral|FILE (else the built-in neutral model), keeping --components N
-// (default 10, or more if more betas/x values are given; 0 = all).
+// (default 10, or more if more betas/x values are given; 0 = all) shape components and
+// --expressions N (default 0; SMPL-X only). Asking for more components or expressions than the
+// file has is an ArgError.
 body::Model load_body_model(const ArgParser& args);
 
+// --components N larger than the model's component count is an error, not a silent clamp.
+void check_component_count(const ArgParser& args, const body::Model& model);
+
+// The largest |beta| accepted from the command line (standard deviations).
+constexpr double kMaxAbsBeta = 10.0;
+
 // --betas b1 b2 ... or --x x1 x2 ... (normalized [0,1], beta = 6x - 3); none = the mean body.
-// Throws ArgError for both, for too many values, or for --x outside [0, 1].
+// Throws ArgError for both, for too many values, for --x outside [0, 1] or betas beyond
+// +-kMaxAbsBeta.
 Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model);
 
 // Number of values given with --betas or --x.
 std::size_t shape_value_count(const ArgParser& args);
+
+// Throws ArgError when `path` (the -o value) names a folder instead of a file, before any work.
+void require_output_file(const std::string& path);
 
 // "0.25, -1, 0" for messages.
 std::string format_betas(const Eigen::VectorXf& betas);

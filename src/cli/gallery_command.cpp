@@ -8,22 +8,28 @@
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
+#include "sps/plane_search.hpp"
 
 namespace {
 
 const char* const kUsage =
     "usage: sequential-gallery [gallery] [options]\n"
+    "  --space body|photo      what to design: body shapes (default) or a photo's colours\n"
     "  --model MODEL           female, male, neutral (built in; default neutral) or FILE.npz\n"
+    "  --image FILE            photo to enhance, PNG or JPEG (default: a built-in picture)\n"
     "  --components K          shape components explored (default 10)\n"
-    "  --grid 3|5              grid size (default 3)\n"
+    "  --grid 3|5              grid size (default 3 for bodies, 5 for photos)\n"
     "  --clicks N              zoom clicks per plane (default 4)\n"
     "  --seed N                random seed of a new search (default 1)\n"
     "  --session FILE          session autosave file (default\n"
     "                          $XDG_STATE_HOME/sequential-gallery/session.json)\n"
     "  --resume ask|yes|no     what to do with an existing session (default ask)\n"
-    "  --save-path FILE.glb    default file name for \"Save glTF\" (default body.glb)\n"
-    "  --view front|side|three-quarter\n"
-    "  --window WxH            window size (default 1600x1000)\n"
+    "  --save-path FILE        default file for \"Save\" (default: as last time, else\n"
+    "                          body.glb / photo.png in the current folder)\n"
+    "  --file-dialog auto|builtin  \"Save as...\": the desktop's dialog (zenity/kdialog) if\n"
+    "                          installed, else the in-app browser (default auto)\n"
+    "  --view front|side|three-quarter   (default: as last time)\n"
+    "  --window WxH            window size (default: as last time, else 1600x1000)\n"
     "  --cell-size PX          grid cell size in pixels (default: fit the window)\n"
     "  --samples N             MSAA samples per cell (default 4, 0 = off)\n"
     "  --animation-samples N   N > 0 keeps MSAA while animating (default 0: off)\n"
@@ -44,6 +50,9 @@ int run(int argc, char** argv) {
     return 0;
   }
   args.reject_unknown({"help",
+                       "space",
+                       "image",
+                       "file-dialog",
                        "model",
                        "components",
                        "grid",
@@ -71,20 +80,27 @@ int run(int argc, char** argv) {
   o.components = args.get_int("components", 10);
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
-  if (o.components < 1) throw cli::ArgError("--components must be at least 1");
+  if (o.components < 1 || o.components > sps::kMaxSearchDims) {
+    throw cli::ArgError("--components must be 1.." + std::to_string(sps::kMaxSearchDims) +
+                        " (more is not searchable by clicking)");
+  }
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
   o.session_path = args.get_or("session", app::default_session_path().string());
   const std::string resume = args.get_or("resume", "ask");
   if (resume == "ask") {
-    o.resume = app::GalleryOptions::Resume::kAsk;
+    o.resume = app::ResumePolicy::kAsk;
   } else if (resume == "yes") {
-    o.resume = app::GalleryOptions::Resume::kYes;
+    o.resume = app::ResumePolicy::kYes;
   } else if (resume == "no") {
-    o.resume = app::GalleryOptions::Resume::kNo;
+    o.resume = app::ResumePolicy::kNo;
   } else {
     throw cli::ArgError("--resume must be ask, yes or no");
   }
-  o.save_path = args.get_or("save-path", "body.glb");
+  o.save_path = args.get_or("save-path", "");
+  o.file_dialog = args.get_or("file-dialog", "auto");
+  if (o.file_dialog != "auto" && o.file_dialog != "builtin") {
+    throw cli::ArgError("--file-dialog must be auto or builtin");
+  }
   if (const auto v = args.get("view")) {
     const auto preset = render::parse_view_preset(*v);
     if (!preset) throw cli::ArgError("--view must be front, side or three-quarter");
@@ -105,7 +121,7 @@ int run(int argc, char** argv) {
   o.benchmark_clicks = args.get_int("benchmark-clicks", 0);
   o.report_layout = args.has("report-layout");
   o.optimizer_delay_ms = std::max(0, args.get_int("optimizer-delay-ms", 0));
-  if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::GalleryOptions::Resume::kNo;
+  if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::ResumePolicy::kNo;
   return app::run_gallery(o);
 }
 

@@ -4,9 +4,20 @@ namespace cli {
 
 void read_gallery_display_options(const ArgParser& args, int default_cell_size,
                                   app::GalleryOptions& o) {
-  if (const auto m = args.get("model")) o.model_path = *m;
-  o.grid_size = args.get_int("grid", 3);
-  if (o.grid_size != 3 && o.grid_size != 5) throw ArgError("--grid must be 3 or 5");
+  o.space = args.get_or("space", "body");
+  if (o.space != "body" && o.space != "photo") throw ArgError("--space must be body or photo");
+  if (const auto m = args.get("model")) {
+    if (o.space != "body") throw ArgError("--model is for --space body; photos take --image");
+    o.source = *m;
+  }
+  if (const auto m = args.get("image")) {
+    if (o.space != "photo") throw ArgError("--image is for --space photo");
+    o.source = *m;
+  }
+  o.grid_size = args.get_int("grid", 0);
+  if (args.has("grid") && o.grid_size != 3 && o.grid_size != 5) {
+    throw ArgError("--grid must be 3 or 5");
+  }
   o.cell_size = args.get_int("cell-size", default_cell_size);
   if (o.cell_size != 0 && o.cell_size < 32) {
     throw ArgError("--cell-size must be at least 32 pixels");

@@ -7,7 +7,7 @@
 
 namespace cli {
 
-// Reads --model, --grid, --cell-size, --samples, --animation-samples and --animation-scale
+// Reads --space, --model, --image, --grid, --cell-size, --samples, --animation-samples and --animation-scale
 // into `o`; `default_cell_size` 0 means "fit the window". Throws ArgError with the option name.
 void read_gallery_display_options(const ArgParser& args, int default_cell_size,
                                   app::GalleryOptions& o);

@@ -16,6 +16,7 @@
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "default_model/default_model.hpp"
+#include "util/atomic_file.hpp"
 
 namespace {
 
@@ -147,21 +148,7 @@ int run(int argc, char** argv) {
       }
       continue;
     }
-    const std::string tmp = path + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      out.write(reinterpret_cast<const char*>(model.npz.data()),
-                static_cast<std::streamsize>(model.npz.size()));
-      if (!out) {
-        std::fprintf(stderr, "generate-default-model: cannot write %s\n", tmp.c_str());
-        return 1;
-      }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-      std::fprintf(stderr, "generate-default-model: cannot rename %s to %s\n", tmp.c_str(),
-                   path.c_str());
-      return 1;
-    }
+    util::write_file_atomically(path, model.npz.data(), model.npz.size());
     std::printf("wrote %s\n", path.c_str());
   }
   return stale == 0 ? 0 : 1;

@@ -40,10 +40,25 @@ int run(int argc, char** argv) {
     return 1;
   }
   try {
-    const body::Model m = body::load_model(path, 0);
+    body::Model m = body::load_model(path, 0);
+    body::load_pose_correctives(m);
     std::printf("usable  yes: %d vertices, %d faces, %d joints (root '%s'), %d shape components\n",
                 m.vertex_count(), static_cast<int>(m.faces.rows()), m.joint_count(),
                 m.joint_names.empty() ? "" : m.joint_names.front().c_str(), m.total_components);
+    if (m.total_expressions > 0) {
+      std::printf("extras  %d expression components (SMPL-X; exported with --expressions N)\n",
+                  m.total_expressions);
+    }
+    if (m.posedirs.cols() > 0) {
+      const bool smpl_layout = m.posedirs.cols() == 9 * (m.joint_count() - 1);
+      std::printf("extras  posedirs with %d columns: %s\n", static_cast<int>(m.posedirs.cols()),
+                  smpl_layout ? "pose correctives for --rest-pose t"
+                              : "not in SMPL's 9 (J - 1) layout, not applied");
+    }
+    if (m.uvs.rows() > 0) {
+      std::printf("extras  %d texture coordinates (vt/ft): exported as TEXCOORD_0\n",
+                  static_cast<int>(m.uvs.rows()));
+    }
     const auto mesh = body::evaluate(m, Eigen::VectorXf());
     std::printf("height  %.4f m (mean shape)\n",
                 mesh.vertices.col(1).maxCoeff() - mesh.vertices.col(1).minCoeff());

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -59,8 +61,24 @@ int main(int argc, char** argv) {
       return 2;
     }
     return command->run(argc - 1, argv + 1);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "sequential-gallery: error: out of memory (is an input file absurdly large?)\n";
+    return 1;
+  } catch (const std::logic_error& e) {
+    // length_error, out_of_range, ...: a library or programming error that escaped the checks
+    // that should have caught it; still a message and an exit code, never an abort.
+    std::cerr << "sequential-gallery: internal error: " << e.what()
+              << " (this is a bug; please report it with the command line)\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "sequential-gallery: error: " << e.what() << "\n";
+    const std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0) {
+      // nlohmann::json's own message: an input that the checks before it should have caught.
+      std::cerr << "sequential-gallery: internal error: unexpected JSON library error: " << what
+                << " (this is a bug; please report it with the command line)\n";
+    } else {
+      std::cerr << "sequential-gallery: error: " << what << "\n";
+    }
     return 1;
   }
 }

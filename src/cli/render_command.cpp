@@ -4,13 +4,14 @@
 #include <iostream>
 #include <string>
 
-#include "app/body_scene.hpp"
 #include "body/model_loader.hpp"
+#include "body/posing.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
 #include "cli/command_registry.hpp"
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
+#include "spaces/body_scene.hpp"
 
 namespace {
 
@@ -18,10 +19,11 @@ const char* const kUsage =
     "usage: sequential-gallery render [--model female|male|neutral|FILE.npz] [--betas B1 B2 ...] "
     "-o OUT.png\n"
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
-    "                                 [--components K] [--samples N]\n"
+    "                                 [--components K] [--samples N] [--rest-pose a|t]\n"
     "                                 [--target X Y Z] [--distance M] [--yaw DEG] [--pitch DEG]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
     "Without --model the built-in neutral body model is used; betas default to 0 (mean body).\n"
+    "--rest-pose t shows the body in the T-pose that `export --rest-pose t` writes.\n"
     "--target (metres, feet on y = 0), --distance, --yaw and --pitch move the camera from the\n"
     "grid cell's framing, e.g. for close-ups of the head, a hand or a knee.\n";
 
@@ -34,9 +36,10 @@ int run(int argc, char** argv_in) {
     return 0;
   }
   args.reject_unknown({"help", "model", "betas", "o", "output", "size", "view", "components",
-                       "samples", "target", "distance", "yaw", "pitch"});
+                       "samples", "rest-pose", "target", "distance", "yaw", "pitch"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
+  cli::require_output_file(*out);
   int width = 400, height = 400;
   if (const auto size = args.get("size")) {
     char x = 0;
@@ -67,21 +70,22 @@ int run(int argc, char** argv_in) {
     throw cli::ArgError("render: --pitch must be within -89..89 degrees");
 
   const int components = args.get_int("components", 0);
-  const body::Model model = body::resolve_model(args.get_or("model", ""), components);
-  const auto list = args.get_doubles("betas");
-  if (static_cast<int>(list.size()) > model.component_count()) {
-    throw cli::ArgError("render: " + std::to_string(list.size()) + " betas given but the model '" +
-                        model.name + "' has " + std::to_string(model.component_count()) +
-                        " components");
-  }
+  body::Model model = body::resolve_model(args.get_or("model", ""), components);
+  cli::check_component_count(args, model);
+  if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
-  for (size_t i = 0; i < list.size(); ++i)
-    betas[static_cast<Eigen::Index>(i)] = static_cast<float>(list[i]);
+  const Eigen::VectorXf given = cli::read_betas(args, model);
+  betas.head(given.size()) = given;
 
   render::HeadlessContext context;
-  const auto mesh = app::body_from_betas(model, betas);
+  auto mesh = spaces::body_from_betas(model, betas);
+  const std::string pose = args.get_or("rest-pose", "a");
+  if (pose != "a" && pose != "t") {
+    throw cli::ArgError("render: --rest-pose must be a or t, got '" + pose + "'");
+  }
+  if (pose == "t") mesh = body::t_posed(model, mesh);
   const auto pixels =
-      app::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
+      spaces::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
   render::write_png(*out, width, height, pixels);
   std::cout << "wrote " << *out << " (" << width << "x" << height << ", " << model.name << ", "
             << render::view_preset_name(*preset) << " view, " << context.renderer() << ")\n";

@@ -3,17 +3,18 @@
 // iteration. This is the benchmark behind docs/benchmarks.md.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "sps/plane_search.hpp"
-#include "sps/simulated_user.hpp"
-#include "sps/test_functions.hpp"
+#include "testing/simulated_user.hpp"
+#include "testing/test_functions.hpp"
+#include "util/atomic_file.hpp"
 
 namespace {
 
@@ -170,8 +171,7 @@ int run(int argc, char** argv) {
   if (!quiet) std::cerr << "\n";
 
   if (const auto path = args.get("per-trial-csv")) {
-    std::ofstream out(*path);
-    if (!out) throw std::runtime_error("cannot write " + *path);
+    std::ostringstream out;  // written atomically below
     out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds\n" << std::setprecision(17);
     for (int trial = 0; trial < trials; ++trial) {
       for (int it = 0; it < iterations; ++it) {
@@ -180,11 +180,11 @@ int run(int argc, char** argv) {
             << seconds[static_cast<std::size_t>(it)][static_cast<std::size_t>(trial)] << "\n";
       }
     }
+    util::write_file_atomically(*path, out.str());
   }
-  std::ofstream csv;
-  if (const auto path = args.get("csv")) {
-    csv.open(*path);
-    if (!csv) throw std::runtime_error("cannot write " + *path);
+  const auto csv_path = args.get("csv");
+  std::ostringstream csv;  // written atomically at the end
+  if (csv_path) {
     csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds\n";
   }
   std::cout << "# " << method_text << " on " << g->name() << " " << dims << "-D, user " << user
@@ -207,7 +207,7 @@ int run(int argc, char** argv) {
     std::cout << std::setw(9) << (it + 1) << "  " << std::scientific << std::setprecision(4) << mean
               << "    " << sd << "    " << med << "    " << std::fixed << std::setprecision(4)
               << sec << "\n";
-    if (csv) {
+    if (csv_path) {
       const auto& secs = seconds[static_cast<std::size_t>(it)];
       double mean_sec = 0.0;
       for (double x : secs) mean_sec += x;
@@ -216,6 +216,7 @@ int run(int argc, char** argv) {
           << med << "," << mean_sec << "," << sec << "\n";
     }
   }
+  if (csv_path) util::write_file_atomically(*csv_path, csv.str());
   return 0;
 }
 

@@ -2,8 +2,11 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include <stb_image_write.h>
+
+#include "util/atomic_file.hpp"
 
 namespace render {
 
@@ -21,11 +24,18 @@ void write_png(const std::filesystem::path& path, int width, int height,
                   pixels.data() + row * static_cast<size_t>(height - 1 - y), row);
     }
   }
-  if (stbi_write_png(path.string().c_str(), width, height, 4, rows.data(), static_cast<int>(row)) ==
-      0) {
-    throw std::runtime_error("cannot write " + path.string() +
-                             ": the directory is missing, not writable, or the disk is full");
+  // Encode in memory, then write through the atomic writer: a full disk or a missing folder
+  // leaves an existing PNG untouched and reports the reason.
+  std::string encoded;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<std::size_t>(size));
+  };
+  if (stbi_write_png_to_func(append, &encoded, width, height, 4, rows.data(),
+                             static_cast<int>(row)) == 0) {
+    throw std::runtime_error("cannot write " + path.string() + ": PNG encoding failed");
   }
+  util::write_file_atomically(path, encoded);
 }
 
 }  // namespace render

@@ -1,6 +1,8 @@
 #include "sps/plane_search.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -28,20 +30,73 @@ json vec_to_json(const Eigen::VectorXd& v) {
   return json(std::vector<double>(v.data(), v.data() + v.size()));
 }
 
-Eigen::VectorXd vec_from_json(const json& j, const char* what, Eigen::Index expected = -1) {
-  if (!j.is_array()) throw std::runtime_error(std::string(what) + " is not an array");
-  Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number()) throw std::runtime_error(std::string(what) + " holds a non-number");
-    v(static_cast<Eigen::Index>(i)) = j[i].get<double>();
+// Stored numbers are checked before they are used or sized anything: a float where an integer
+// belongs (1e300 converted to int is undefined), out-of-range counts, NaN.
+long long int_from_json(const json& j, const std::string& what, long long lo, long long hi) {
+  long long v = 0;
+  if (j.is_number_unsigned()) {
+    const auto u = j.get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(hi)) {
+      throw std::runtime_error(what + " is " + j.dump() + ", must be at most " +
+                               std::to_string(hi));
+    }
+    v = static_cast<long long>(u);
+  } else if (j.is_number_integer()) {
+    v = j.get<std::int64_t>();
+  } else {
+    throw std::runtime_error(what + " must be an integer, found " + j.dump());
   }
-  if (!v.allFinite()) throw std::runtime_error(std::string(what) + " holds NaN or infinity");
-  if (expected >= 0 && v.size() != expected) {
-    throw std::runtime_error(std::string(what) + " has " + std::to_string(v.size()) +
-                             " entries, expected " + std::to_string(expected));
+  if (v < lo || v > hi) {
+    throw std::runtime_error(what + " is " + std::to_string(v) + ", must lie in [" +
+                             std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return v;
 }
+
+double double_from_json(const json& j, const std::string& what, double lo, double hi) {
+  if (!j.is_number()) throw std::runtime_error(what + " must be a number, found " + j.dump());
+  const double v = j.get<double>();
+  if (!std::isfinite(v) || v < lo || v > hi) {
+    std::ostringstream range;
+    range << what << " is " << j.dump() << ", must lie in [" << lo << ", " << hi << "]";
+    throw std::runtime_error(range.str());
+  }
+  return v;
+}
+
+// Sizes are checked before the vector is allocated; entries must be finite and within
+// [lo, hi].
+Eigen::VectorXd vec_from_json(const json& j, const char* what, Eigen::Index expected, double lo,
+                              double hi) {
+  if (!j.is_array()) throw std::runtime_error(std::string(what) + " is not an array");
+  if (static_cast<Eigen::Index>(j.size()) != expected) {
+    throw std::runtime_error(std::string(what) + " has " + std::to_string(j.size()) +
+                             " entries, expected " + std::to_string(expected));
+  }
+  Eigen::VectorXd v(expected);
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_number()) throw std::runtime_error(std::string(what) + " holds a non-number");
+    const double x = j[i].get<double>();
+    if (!std::isfinite(x)) throw std::runtime_error(std::string(what) + " holds NaN or infinity");
+    if (x < lo || x > hi) {
+      std::ostringstream out;
+      out << what << " holds " << x << ", outside [" << lo << ", " << hi << "]";
+      throw std::runtime_error(out.str());
+    }
+    v(static_cast<Eigen::Index>(i)) = x;
+  }
+  return v;
+}
+
+// Limits of stored state. Plane vectors: c in the unit box, u and v differences of box points
+// (with generous room); hyperparameters far outside these are nonsense that overflows the
+// kernel (an amplitude of 1e300 turns every later value into NaN).
+constexpr double kMaxPlaneExtent = 10.0;
+constexpr double kMinHyper = 1e-6;
+constexpr double kMaxHyper = 1e6;
+constexpr double kMaxLatent = 1e6;
+constexpr long long kMaxStoredPoints = 100000;
+constexpr long long kMaxStoredPreferences = 100000;
 
 json plane_to_json(const Plane& p) {
   return {{"c", vec_to_json(p.c)},
@@ -52,13 +107,10 @@ json plane_to_json(const Plane& p) {
 
 Plane plane_from_json(const json& j, int dims) {
   Plane p;
-  p.c = vec_from_json(j.at("c"), "plane.c", dims);
-  p.u = vec_from_json(j.at("u"), "plane.u", dims);
-  p.v = vec_from_json(j.at("v"), "plane.v", dims);
-  p.u_neg_scale = j.at("u_neg_scale").get<double>();
-  if (!(p.u_neg_scale >= 0.0 && p.u_neg_scale <= 1.0)) {
-    throw std::runtime_error("plane.u_neg_scale must lie in [0, 1]");
-  }
+  p.c = vec_from_json(j.at("c"), "plane.c", dims, 0.0, 1.0);
+  p.u = vec_from_json(j.at("u"), "plane.u", dims, -kMaxPlaneExtent, kMaxPlaneExtent);
+  p.v = vec_from_json(j.at("v"), "plane.v", dims, -kMaxPlaneExtent, kMaxPlaneExtent);
+  p.u_neg_scale = double_from_json(j.at("u_neg_scale"), "plane.u_neg_scale", 0.0, 1.0);
   return p;
 }
 
@@ -68,15 +120,47 @@ json params_to_json(const KernelParams& p) {
 
 KernelParams params_from_json(const json& j, int dims) {
   KernelParams p;
-  p.amplitude = j.at("amplitude").get<double>();
-  p.length_scales = vec_from_json(j.at("length_scales"), "length_scales", dims);
-  if (!(p.amplitude > 0.0) || (p.length_scales.array() <= 0.0).any()) {
-    throw std::runtime_error("kernel hyperparameters must be positive");
-  }
+  p.amplitude = double_from_json(j.at("amplitude"), "kernel amplitude", kMinHyper, kMaxHyper);
+  p.length_scales =
+      vec_from_json(j.at("length_scales"), "length_scales", dims, kMinHyper, kMaxHyper);
   return p;
 }
 
+void check_rng_state(const std::string& state, const std::string& what) {
+  std::mt19937_64 probe;
+  std::istringstream in(state);
+  in >> probe;
+  if (in.fail()) throw std::runtime_error(what + ": the random generator state is unreadable");
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
 }  // namespace
+
+void validate_options(const SearchOptions& o) {
+  require(o.dims >= 1 && o.dims <= kMaxSearchDims,
+          "the number of dimensions must be between 1 and " + std::to_string(kMaxSearchDims) +
+              ", got " + std::to_string(o.dims));
+  require(o.plane_restarts >= 0 && o.plane_restarts <= 1000, "plane_restarts must be 0-1000");
+  require(o.ei_restarts >= 0 && o.ei_restarts <= 100000, "ei_restarts must be 0-100000");
+  require(o.threads >= 1 && o.threads <= 256, "threads must be 1-256");
+  require(o.representatives == 5 || o.representatives == 9, "representatives must be 5 or 9");
+  const ModelSettings& m = o.model;
+  const auto in = [](double v, double lo, double hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  require(in(m.amplitude_prior, kMinHyper, kMaxHyper), "amplitude_prior must lie in [1e-6, 1e6]");
+  require(in(m.length_scale_prior, kMinHyper, kMaxHyper),
+          "length_scale_prior must lie in [1e-6, 1e6]");
+  require(in(m.prior_log_variance, 1e-8, 100.0), "prior_log_variance must lie in [1e-8, 100]");
+  require(in(m.btl_scale, 1e-8, 1e3), "btl_scale must lie in [1e-8, 1000]");
+  require(in(m.noise_variance, 1e-12, 1.0), "noise_variance must lie in [1e-12, 1]");
+  require(m.max_hyper_iterations >= 0 && m.max_hyper_iterations <= 100000,
+          "max_hyper_iterations must be 0-100000");
+  require(m.max_points >= 2 && m.max_points <= 10000, "max_points must be 2-10000");
+}
 
 const char* method_name(Method m) {
   switch (m) {
@@ -100,14 +184,20 @@ bool parse_method(const std::string& name, Method& out) {
   return false;
 }
 
+namespace {
+
+const SearchOptions& validated(const SearchOptions& options) {
+  validate_options(options);
+  return options;
+}
+
+}  // namespace
+
 PlaneSearch::PlaneSearch(const SearchOptions& options)
-    : options_(options),
+    : options_(validated(options)),
       rng_(options.seed),
       data_(options.dims),
       model_(std::make_shared<PreferenceModel>(options.dims, options.model)) {
-  if (options.dims < 1 || options.dims > 1000) {
-    throw std::invalid_argument("the number of dimensions must be between 1 and 1000");
-  }
   plane_ = first_plane(options_.dims, rng_);
 }
 
@@ -149,8 +239,32 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
     data_.add_preference(comparison.front(),
                          std::vector<Eigen::VectorXd>(comparison.begin() + 1, comparison.end()));
   }
-  model_ = std::make_shared<PreferenceModel>(PreferenceModel::fit(data_, options_.model, *model_));
-  propose_next_plane(x);
+  try {
+    model_ =
+        std::make_shared<PreferenceModel>(PreferenceModel::fit(data_, options_.model, *model_));
+    propose_next_plane(x);
+    // Never keep a state that could not be saved and read back (from_json's limits): go back
+    // to the state before this submission instead.
+    const KernelParams& p = model_->params();
+    const auto in = [](double v, double lo, double hi) {
+      return std::isfinite(v) && v >= lo && v <= hi;
+    };
+    bool ok =
+        in(p.amplitude, kMinHyper, kMaxHyper) && model_->latent().allFinite() &&
+        (model_->latent().size() == 0 || model_->latent().cwiseAbs().maxCoeff() <= kMaxLatent) &&
+        plane_.c.allFinite() && plane_.u.allFinite() && plane_.v.allFinite() &&
+        plane_.c.minCoeff() >= 0.0 && plane_.c.maxCoeff() <= 1.0 &&
+        plane_.u.cwiseAbs().maxCoeff() <= kMaxPlaneExtent &&
+        (plane_.v.size() == 0 || plane_.v.cwiseAbs().maxCoeff() <= kMaxPlaneExtent) &&
+        in(plane_.u_neg_scale, 0.0, 1.0);
+    for (Eigen::Index i = 0; ok && i < p.length_scales.size(); ++i) {
+      ok = in(p.length_scales[i], kMinHyper, kMaxHyper);
+    }
+    if (!ok) throw std::runtime_error("the optimizer produced non-finite or absurd values");
+  } catch (...) {
+    undo();
+    throw;
+  }
   last_submit_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -279,46 +393,93 @@ std::string PlaneSearch::to_json() const {
 PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
   try {
     const json j = json::parse(json_text);
-    if (j.value("format", "") != kFormat) {
+    if (!j.is_object() || j.value("format", "") != kFormat) {
       throw std::runtime_error("not a plane-search state (format field missing or different)");
     }
-    if (j.at("version").get<int>() != kVersion) {
+    if (int_from_json(j.at("version"), "version", 0, 1000000) != kVersion) {
       throw std::runtime_error("unsupported version " + j.at("version").dump());
     }
+    // Every option is checked before the search (and its per-dimension arrays) exists.
     const json& o = j.at("options");
     SearchOptions options;
-    options.dims = o.at("dims").get<int>();
-    options.seed = o.at("seed").get<std::uint64_t>();
+    options.dims = static_cast<int>(int_from_json(o.at("dims"), "dims", 1, kMaxSearchDims));
+    if (!o.at("seed").is_number_unsigned() && !o.at("seed").is_number_integer()) {
+      throw std::runtime_error("seed must be an integer");
+    }
+    options.seed = static_cast<std::uint64_t>(
+        o.at("seed").is_number_unsigned()
+            ? o.at("seed").get<std::uint64_t>()
+            : static_cast<std::uint64_t>(int_from_json(o.at("seed"), "seed", 0, LLONG_MAX)));
     if (!parse_method(o.at("method").get<std::string>(), options.method)) {
       throw std::runtime_error("unknown method " + o.at("method").dump());
     }
     options.current_best = o.at("current_best").get<std::string>() == "last-selection"
                                ? CurrentBest::kLastSelection
                                : CurrentBest::kPosteriorMean;
-    options.plane_restarts = o.at("plane_restarts").get<int>();
-    options.ei_restarts = o.at("ei_restarts").get<int>();
-    options.threads = o.at("threads").get<int>();
-    options.representatives = o.value("representatives", 5);
+    options.plane_restarts =
+        static_cast<int>(int_from_json(o.at("plane_restarts"), "plane_restarts", 0, 1000));
+    options.ei_restarts =
+        static_cast<int>(int_from_json(o.at("ei_restarts"), "ei_restarts", 0, 100000));
+    options.threads = static_cast<int>(int_from_json(o.at("threads"), "threads", 1, 256));
+    options.representatives =
+        o.contains("representatives")
+            ? static_cast<int>(int_from_json(o.at("representatives"), "representatives", 5, 9))
+            : 5;
     const json& m = o.at("model");
-    options.model.amplitude_prior = m.at("amplitude_prior").get<double>();
-    options.model.length_scale_prior = m.at("length_scale_prior").get<double>();
-    options.model.prior_log_variance = m.at("prior_log_variance").get<double>();
-    options.model.btl_scale = m.at("btl_scale").get<double>();
-    options.model.noise_variance = m.at("noise_variance").get<double>();
-    options.model.max_hyper_iterations = m.at("max_hyper_iterations").get<int>();
-    options.model.max_points = m.value("max_points", options.model.max_points);
-    if (options.model.max_points < 2) throw std::runtime_error("max_points must be at least 2");
+    ModelSettings& ms = options.model;
+    ms.amplitude_prior =
+        double_from_json(m.at("amplitude_prior"), "amplitude_prior", kMinHyper, kMaxHyper);
+    ms.length_scale_prior =
+        double_from_json(m.at("length_scale_prior"), "length_scale_prior", kMinHyper, kMaxHyper);
+    ms.prior_log_variance =
+        double_from_json(m.at("prior_log_variance"), "prior_log_variance", 1e-8, 100.0);
+    ms.btl_scale = double_from_json(m.at("btl_scale"), "btl_scale", 1e-8, 1e3);
+    ms.noise_variance = double_from_json(m.at("noise_variance"), "noise_variance", 1e-12, 1.0);
+    ms.max_hyper_iterations = static_cast<int>(
+        int_from_json(m.at("max_hyper_iterations"), "max_hyper_iterations", 0, 100000));
+    if (m.contains("max_points")) {
+      ms.max_points = static_cast<int>(int_from_json(m.at("max_points"), "max_points", 2, 10000));
+    }
 
     PlaneSearch search(options);
     const int d = options.dims;
-    for (const json& p : j.at("points")) search.data_.add_point_exact(vec_from_json(p, "point", d));
-    for (const json& p : j.at("preferences")) {
-      Preference pref;
-      pref.chosen = p.at("chosen").get<int>();
-      pref.others = p.at("others").get<std::vector<int>>();
-      search.data_.add_preference_indices(std::move(pref));
+    const json& points = j.at("points");
+    const json& preferences = j.at("preferences");
+    if (!points.is_array() || !preferences.is_array()) {
+      throw std::runtime_error("points and preferences must be arrays");
     }
+    if (static_cast<long long>(points.size()) > kMaxStoredPoints ||
+        static_cast<long long>(preferences.size()) > kMaxStoredPreferences) {
+      throw std::runtime_error("more points or preferences than a session can hold");
+    }
+    for (const json& p : points)
+      search.data_.add_point_exact(vec_from_json(p, "point", d, 0.0, 1.0));
     const int n = search.data_.point_count();
+    // max_index[k]: the largest point index used by the first k preferences; a snapshot of
+    // (points, preferences) is consistent only if max_index[preferences] < points.
+    std::vector<int> max_index{-1};
+    for (const json& p : preferences) {
+      Preference pref;
+      pref.chosen = static_cast<int>(int_from_json(p.at("chosen"), "preference index", 0, n - 1));
+      const json& others = p.at("others");
+      if (!others.is_array() || others.empty() || others.size() > static_cast<std::size_t>(n)) {
+        throw std::runtime_error("a preference has no or too many rejected points");
+      }
+      std::vector<bool> seen(static_cast<std::size_t>(n), false);
+      seen[static_cast<std::size_t>(pref.chosen)] = true;
+      int largest = pref.chosen;
+      for (const json& other : others) {
+        const int index = static_cast<int>(int_from_json(other, "preference index", 0, n - 1));
+        if (seen[static_cast<std::size_t>(index)]) {
+          throw std::runtime_error("a preference repeats a point");
+        }
+        seen[static_cast<std::size_t>(index)] = true;
+        pref.others.push_back(index);
+        largest = std::max(largest, index);
+      }
+      search.data_.add_preference_indices(std::move(pref));
+      max_index.push_back(std::max(max_index.back(), largest));
+    }
     search.set_rng_state(j.at("rng").get<std::string>());
     const KernelParams params = params_from_json(j.at("params"), d);
     // The model holds latent values for the points of its window (all points in a short
@@ -329,32 +490,58 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
       return static_cast<Eigen::Index>(model_window(prefix, options.model).point_count());
     };
     const Eigen::VectorXd latent =
-        vec_from_json(j.at("latent"), "latent", window_points(n, search.data_.preference_count()));
+        vec_from_json(j.at("latent"), "latent", window_points(n, search.data_.preference_count()),
+                      -kMaxLatent, kMaxLatent);
     search.model_ =
         n == 0 ? std::make_shared<PreferenceModel>(d, options.model)
                : std::make_shared<PreferenceModel>(search.data_, options.model, params, latent);
     search.plane_ = plane_from_json(j.at("plane"), d);
-    for (const json& h : j.at("history")) {
+    const json& history = j.at("history");
+    if (!history.is_array() || static_cast<long long>(history.size()) > kMaxStoredPreferences) {
+      throw std::runtime_error("history must be an array of at most " +
+                               std::to_string(kMaxStoredPreferences) + " entries");
+    }
+    int previous_points = 0;
+    int previous_preferences = 0;
+    for (const json& h : history) {
+      // Undo restores each snapshot, so each one must be a state the search could have had:
+      // a prefix of the data (growing from one snapshot to the next) whose preferences refer
+      // only to its own points, valid hyperparameters and a readable generator state.
       Snapshot s;
-      s.plane = plane_from_json(h.at("plane"), d);
-      s.points = h.at("points").get<int>();
-      s.preferences = h.at("preferences").get<int>();
-      if (s.points < 0 || s.points > n || s.preferences < 0 ||
-          s.preferences > search.data_.preference_count()) {
-        throw std::runtime_error("history refers to data that does not exist");
+      s.points = static_cast<int>(int_from_json(h.at("points"), "history points", 0, n));
+      s.preferences = static_cast<int>(int_from_json(h.at("preferences"), "history preferences", 0,
+                                                     search.data_.preference_count()));
+      if (s.points < previous_points || s.preferences < previous_preferences) {
+        throw std::runtime_error("history snapshots are out of order");
       }
+      if (max_index[static_cast<std::size_t>(s.preferences)] >= s.points) {
+        throw std::runtime_error("a history snapshot has preferences pointing past its " +
+                                 std::to_string(s.points) + " points");
+      }
+      previous_points = s.points;
+      previous_preferences = s.preferences;
+      s.plane = plane_from_json(h.at("plane"), d);
       s.params = params_from_json(h.at("params"), d);
-      s.latent =
-          vec_from_json(h.at("latent"), "history latent", window_points(s.points, s.preferences));
+      s.latent = vec_from_json(h.at("latent"), "history latent",
+                               window_points(s.points, s.preferences), -kMaxLatent, kMaxLatent);
       s.rng_state = h.at("rng").get<std::string>();
+      check_rng_state(s.rng_state, "history entry " + std::to_string(search.history_.size() + 1));
       search.history_.push_back(std::move(s));
     }
-    search.start_overs_ = j.value("start_overs", 0);
+    search.start_overs_ =
+        j.contains("start_overs")
+            ? static_cast<int>(int_from_json(j.at("start_overs"), "start_overs", 0, INT_MAX))
+            : 0;
     return search;
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(std::string("plane-search state: ") + e.what());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("plane-search state: ") + e.what());
+  } catch (const std::length_error& e) {
+    throw std::runtime_error(std::string("plane-search state: sizes out of range (") + e.what() +
+                             ")");
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("plane-search state: too large to load (out of memory)");
   }
 }
 

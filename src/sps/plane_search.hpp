@@ -43,6 +43,14 @@ struct SearchOptions {
   ModelSettings model;  // priors and likelihood of the preference model
 };
 
+// The largest search space a session may have (the paper explores up to ~20 dimensions; more
+// is not searchable by clicking and only costs memory).
+constexpr int kMaxSearchDims = 64;
+
+// Throws std::invalid_argument naming the first option outside its sane range (dims 1-64,
+// positive finite hyperparameter priors, ...). Called before anything is allocated.
+void validate_options(const SearchOptions& options);
+
 const char* method_name(Method m);
 bool parse_method(const std::string& name, Method& out);
 

@@ -58,6 +58,11 @@ PreferenceData model_window(const PreferenceData& data, const ModelSettings& set
     used = std::move(with);
     --first;
   }
+  // Indices come from stored files too: one past the points would write out of bounds below.
+  const auto in_range = [&](int i) { return i >= 0 && i < data.point_count(); };
+  if (!used.empty() && (!in_range(*used.begin()) || !in_range(*used.rbegin()))) {
+    throw std::invalid_argument("a preference refers to a point that does not exist");
+  }
   PreferenceData window(data.dims(), data.merge_distance());
   std::vector<int> new_index(static_cast<std::size_t>(data.point_count()), -1);
   for (int i : used) {

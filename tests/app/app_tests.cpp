@@ -13,6 +13,7 @@
 #include "app/session.hpp"
 #include "app/session_store.hpp"
 #include "app/worker.hpp"
+#include "session_fixtures.hpp"
 
 namespace fs = std::filesystem;
 
@@ -200,7 +201,7 @@ TEST_CASE("autosave writes atomically and loads back", "[app]") {
     CHECK(none.problem.empty());
   }
   SECTION("saving into an unwritable place reports the file") {
-    CHECK_THROWS_WITH(app::write_file_atomically("/proc/version/x/session.json", "{}"),
+    CHECK_THROWS_WITH(app::save_session(session, "/proc/version/x/session.json"),
                       Catch::Contains("/proc/version/x/session.json"));
   }
 }
@@ -253,4 +254,103 @@ TEST_CASE("the worker computes the next plane off the calling thread", "[app]") 
   session.finish_plane(std::move(*result->search));
   CHECK(session.planes_done() == 1);
   CHECK_FALSE(worker.busy());
+}
+
+TEST_CASE("the good session fixture loads, undoes to every history entry and round-trips",
+          "[app][session-file]") {
+  app::Session session = app::Session::from_json(test_fixtures::good_session_json());
+  CHECK(session.planes_done() == 3);
+  CHECK(session.clicks_on_plane() == 1);
+  // The fixture's window is smaller than its data (what defect 1 needed).
+  CHECK(session.search().data().point_count() > session.search().options().model.max_points);
+  const std::string text = session.to_json();
+  CHECK(test_support::first_difference(app::Session::from_json(text).to_json(), text) == "");
+  while (session.undo_click()) {
+    const app::Session again = app::Session::from_json(session.to_json());
+    CHECK(again.planes_done() == session.planes_done());
+  }
+  CHECK(session.planes_done() == 0);
+}
+
+TEST_CASE("every broken session fixture is refused with a message naming the problem",
+          "[app][session-file]") {
+  const auto fixtures = test_fixtures::broken_session_fixtures();
+  CHECK(fixtures.size() >= 20);
+  for (const auto& f : fixtures) {
+    INFO("fixture " << f.name);
+    CHECK_THROWS_WITH(app::Session::from_json(f.text), Catch::Contains(f.expected));
+  }
+}
+
+TEST_CASE("a corrupt session is set aside by load_session and the window starts fresh",
+          "[app][session-file]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  for (const auto& f : test_fixtures::broken_session_fixtures()) {
+    INFO("fixture " << f.name);
+    std::ofstream(file, std::ios::binary) << f.text;
+    const auto result = app::load_session(file);
+    CHECK_FALSE(result.session.has_value());
+    CHECK_THAT(result.problem, Catch::Contains(f.expected));
+    CHECK(fs::exists(result.set_aside));
+  }
+}
+
+TEST_CASE("set-aside sessions rotate: five .previous copies are kept, the oldest dropped",
+          "[app][session-file]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  for (int i = 1; i <= 7; ++i) {
+    std::ofstream(file, std::ios::binary) << "session " << i;
+    const fs::path aside = app::set_aside_session(file);
+    CHECK(aside == fs::path(file.string() + ".previous"));
+    CHECK_FALSE(fs::exists(file));
+  }
+  CHECK(read_text(file.string() + ".previous") == "session 7");
+  for (int k = 1; k < app::kKeptPreviousSessions; ++k) {
+    CHECK(read_text(file.string() + ".previous." + std::to_string(k)) ==
+          "session " + std::to_string(7 - k));
+  }
+  CHECK_FALSE(
+      fs::exists(file.string() + ".previous." + std::to_string(app::kKeptPreviousSessions)));
+  CHECK_THROWS_WITH(app::set_aside_session(file), Catch::Contains(file.string()));
+}
+
+TEST_CASE("saving keeps the last good file when the new one cannot be written",
+          "[app][session-file]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  app::Session session(small_settings());
+  app::save_session(session, file);
+  const std::string good = read_text(file);
+  session.click({0, 0});
+  // A folder where the file should be cannot be replaced: the error names it.
+  const fs::path folder = dir.path / "folder.json";
+  fs::create_directories(folder);
+  CHECK_THROWS_WITH(app::save_session(session, folder), Catch::Contains("folder.json"));
+  // A model path that is not UTF-8 cannot go into JSON as it is; it is saved with replacement
+  // characters instead of failing every autosave.
+  app::SessionSettings odd = small_settings();
+  odd.model_path = "/tmp/caf\xe9.npz";
+  app::Session odd_session(odd);
+  REQUIRE_NOTHROW(app::save_session(odd_session, file));
+  CHECK(app::load_session(file).session.has_value());
+}
+
+TEST_CASE("a session that would not read back is never written; the last good file stays",
+          "[app][session-file]") {
+  TempDir dir;
+  const fs::path file = dir.path / "session.json";
+  app::Session session(small_settings());
+  app::save_session(session, file);
+  const std::string good = read_text(file);
+  // A search of another dimension than the session's components: to_json works, from_json
+  // refuses it -- so save_session must refuse too and leave the good file alone.
+  sps::SearchOptions other;
+  other.dims = small_settings().components + 1;
+  for (const auto& c : std::vector<sps::GridCell>{{0, 0}, {1, 1}, {2, 2}, {1, 0}}) session.click(c);
+  session.finish_plane(sps::PlaneSearch(other));
+  CHECK_THROWS_WITH(app::save_session(session, file),
+                    Catch::Contains("did not save") && Catch::Contains("kept the last good file"));
+  CHECK(test_support::first_difference(read_text(file), good) == "");
 }

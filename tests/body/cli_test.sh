@@ -45,7 +45,44 @@ if grep -q '"targets"' "$dir/body.gltf"; then fail "--no-morph still wrote morph
 command -v node >/dev/null || fail "node is not installed (bash tools/setup.sh --test)"
 node "$validator" "$dir/body.glb" "$dir/body.gltf" "$dir/betas.gltf"
 
+echo "== rest pose, presets, VRM"
+help=$("$exe" export --help)
+for p in blender unity unreal threejs vrm; do expect "$help" "^  $p "; done
+"$exe" export --model "$dir/cyl.npz" --betas 0.5 --rest-pose t -o "$dir/t.glb" >/dev/null
+"$exe" export --betas 0.5 --preset vrm -o "$dir/avatar.vrm" --vrm-authors "A; B" >/dev/null
+grep -q '"VRMC_vrm"' "$dir/avatar.vrm" || fail "avatar.vrm has no VRMC_vrm"
+grep -q '"authors":\["A","B"\]' "$dir/avatar.vrm" || fail "avatar.vrm: authors not set"
+"$exe" export --betas 0.5 --preset unity -o "$dir/unity.glb" >/dev/null
+grep -q '"leftUpperArm"' "$dir/unity.glb" || fail "--preset unity: no humanoid bone names"
+"$writer" "$dir/smpl.npz" smpl  # SMPL look-alike with posedirs (207 columns)
+"$exe" export --model "$dir/smpl.npz" --rest-pose t -o "$dir/smpl_t.gltf" >/dev/null
+grep -q "T (model's skinning and pose correctives)" "$dir/smpl_t.gltf" ||
+  fail "--rest-pose t on a model with posedirs did not apply them"
+"$exe" export --model "$dir/cyl.npz" --rest-pose t -o "$dir/cyl_t.gltf" >/dev/null
+grep -q "T (model's skinning, no pose correctives)" "$dir/cyl_t.gltf" ||
+  fail "--rest-pose t without posedirs: extras do not say so"
+node "$validator" "$dir/t.glb" "$dir/avatar.vrm" "$dir/unity.glb" "$dir/smpl_t.gltf"
+
 echo "== errors"
+if out=$("$exe" export --model "$dir/cyl.npz" --components 16 -o "$dir/x.glb" 2>&1); then
+  fail "--components 16 on a 10-component file accepted"
+fi
+expect "$out" "--components 16: the model 'cyl' has only 10 shape components"
+if out=$("$exe" export --model "$dir/cyl.npz" --no-morph --morph-betas -o "$dir/x.glb" 2>&1); then
+  fail "--no-morph with --morph-betas accepted"
+fi
+expect "$out" "--no-morph and --morph-betas"
+if out=$("$exe" export --model "$dir/cyl.npz" --expressions 2 -o "$dir/x.glb" 2>&1); then
+  fail "--expressions on a model without expressions accepted"
+fi
+expect "$out" "no expression components"
+if out=$("$exe" export --preset vrm -o "$dir/x.glb" 2>&1); then fail "--preset vrm to .glb"; fi
+expect "$out" "\*\.vrm"
+if out=$("$exe" export --rest-pose a -o "$dir/x.vrm" 2>&1); then fail "A-pose .vrm accepted"; fi
+expect "$out" "T-pose"
+if out=$("$exe" export --rest-pose x -o "$dir/x.glb" 2>&1); then fail "--rest-pose x accepted"; fi
+expect "$out" "a\|t"
+[ ! -e "$dir/x.glb" ] && [ ! -e "$dir/x.vrm" ] || fail "a failed export left a file"
 before=$(md5sum <"$dir/body.glb")
 if out=$("$exe" export --model "$dir/cyl.npz" --betas 1 2 3 4 5 6 7 8 9 10 11 --components 10 \
           -o "$dir/body.glb" 2>&1); then fail "too many betas accepted"; fi
@@ -64,4 +101,28 @@ echo "$out"
 expect "$out" "usable  no: .*cut.npz"
 if out=$("$exe" measure --model "$dir/missing.npz" 2>&1); then fail "missing model accepted"; fi
 expect "$out" "missing.npz: file not found"
+
+echo "== messages users met (issue 10)"
+refuse() {  # refuse PATTERN COMMAND...: the command must fail with a message matching PATTERN
+  local pattern=$1; shift
+  if out=$("$@" 2>&1); then fail "accepted: $*"; fi
+  echo "$out"
+  expect "$out" "$pattern"
+}
+refuse "value number 1 is 1\.5, which is outside \[0, 1\]" "$exe" measure --model "$dir/cyl.npz" --x 1.5
+refuse "value number 2 is 1e\+30, which is outside \[-10, 10\]" \
+  "$exe" export --model "$dir/cyl.npz" --betas 0 1e30 -o "$dir/collapsed.glb"
+[ -e "$dir/collapsed.glb" ] && fail "betas of 1e30 wrote a file"
+refuse "'-inf' is not a number" "$exe" measure --model "$dir/cyl.npz" --betas -inf
+refuse "empty value between commas" "$exe" measure --model "$dir/cyl.npz" --betas 1,,2
+refuse "'0x10' is not a number" "$exe" measure --model "$dir/cyl.npz" --components 0x10
+refuse "--components 17: the model 'cyl' has only 10 shape components" \
+  "$exe" measure --model "$dir/cyl.npz" --components 17
+refuse "--components 1000000000: .* has only 10" \
+  "$exe" measure --model "$dir/cyl.npz" --components 1000000000
+refuse "/dev/zero: not a regular file" "$exe" inspect --model /dev/zero
+refuse "/dev/zero: not a regular file" "$exe" measure --model /dev/zero
+refuse "--vrm-name: the text is not valid UTF-8" \
+  "$exe" export --model "$dir/cyl.npz" --vrm-name $'caf\xe9' -o "$dir/latin1.vrm"
+out=$("$exe" measure --model "$dir/cyl.npz" --betas 1e-320) || fail "--betas 1e-320 refused: $out"
 echo "body_cli: all checks passed"

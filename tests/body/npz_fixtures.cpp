@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <zip.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -239,13 +240,76 @@ std::map<std::string, Array> cylinder_model(const Cylinder& c) {
 
   const int smpl_parents[24] = {-1, 0, 0, 0,  1,  2,  3,  4,  5,  6,  7,  8,
                                 9,  9, 9, 12, 13, 14, 16, 17, 18, 19, 20, 21};
+  // SMPL+H (52) and SMPL-X (55): SMPL's first 22 joints, (SMPL-X) jaw and eyes on the head,
+  // then three-joint finger chains on each wrist, as the models' public descriptions have it.
+  std::vector<int> family(static_cast<std::size_t>(J), 0);
+  if (J == 52 || J == 55) {
+    for (int j = 0; j < 22; ++j) family[static_cast<std::size_t>(j)] = smpl_parents[j];
+    int next = 22;
+    if (J == 55) {
+      for (; next < 25; ++next) family[static_cast<std::size_t>(next)] = 15;
+    }
+    for (int wrist : {20, 21}) {
+      for (int finger = 0; finger < 5; ++finger, next += 3) {
+        family[static_cast<std::size_t>(next)] = wrist;
+        family[static_cast<std::size_t>(next + 1)] = next;
+        family[static_cast<std::size_t>(next + 2)] = next + 1;
+      }
+    }
+  }
   Array kt{{2, static_cast<std::size_t>(J)}, {}, Dtype::i8};
   for (int j = 0; j < J; ++j) {
-    kt.values.push_back(J == 24 ? smpl_parents[j] : (j == 0 ? 4294967295.0 : (j - 1) / 2));
+    kt.values.push_back(J == 24              ? smpl_parents[j]
+                        : j == 0             ? 4294967295.0
+                        : J == 52 || J == 55 ? family[static_cast<std::size_t>(j)]
+                                             : (j - 1) / 2);
   }
   for (int j = 0; j < J; ++j) kt.values.push_back(j);
   if (J != 24) kt.dtype = Dtype::u4;
   m["kintree_table"] = kt;
+
+  if (c.uvs) {
+    // (S + 1) columns per ring so the seam has u = 0 on one side and u = 1 on the other.
+    Array vt{{static_cast<std::size_t>((S + 1) * R + 2), 2}, {}, Dtype::f4};
+    for (int r = 0; r < R; ++r) {
+      for (int s = 0; s <= S; ++s) {
+        vt.values.insert(vt.values.end(), {double(s) / S, double(r) / (R - 1)});
+      }
+    }
+    vt.values.insert(vt.values.end(), {0.5, 0.0, 0.5, 1.0});
+    Array ft{{f.shape[0], 3}, {}, Dtype::i4};
+    for (std::size_t i = 0; i < f.shape[0]; ++i) {
+      bool has_first = false, has_last = false;
+      for (int k = 0; k < 3; ++k) {
+        const int v = static_cast<int>(f.values[3 * i + static_cast<std::size_t>(k)]);
+        if (v < S * R && v % S == 0) has_first = true;
+        if (v < S * R && v % S == S - 1) has_last = true;
+      }
+      for (int k = 0; k < 3; ++k) {
+        const int v = static_cast<int>(f.values[3 * i + static_cast<std::size_t>(k)]);
+        int t = 0;
+        if (v >= S * R) {
+          t = (S + 1) * R + (v - S * R);
+        } else {
+          const int seg = (v % S == 0 && has_first && has_last) ? S : v % S;
+          t = (v / S) * (S + 1) + seg;
+        }
+        ft.values.push_back(t);
+      }
+    }
+    m["vt"] = vt;
+    m["ft"] = ft;
+  }
+  if (c.pose_columns > 0) {
+    Array pd{
+        {static_cast<std::size_t>(V), 3, static_cast<std::size_t>(c.pose_columns)}, {}, Dtype::f4};
+    pd.values.assign(static_cast<std::size_t>(V * 3 * c.pose_columns), 0.0);
+    for (int v = 0; v < V; ++v) {
+      const int column = std::min(135, c.pose_columns - 1);
+      pd.values[static_cast<std::size_t>((v * 3 + 1) * c.pose_columns + column)] = c.pose_lift;
+    }
+    m["posedirs"] = pd;
+  }
   return m;
 }
 

@@ -43,7 +43,12 @@ std::string read_file(const std::filesystem::path& path);
 //   0: radial growth (x, z) -> radius r * (1 + b0)
 //   1: vertical stretch (0, y - base_y, 0) -> height h * (1 + b1)
 //   k >= 2: a smooth small field sin/cos(k ...)
-// 24 joints (SMPL's parents) regressed from ring averages; skin weights on up to 5 joints.
+// 24 joints (SMPL's parents; SMPL+H's and SMPL-X's hierarchy for 52 and 55 joints) regressed
+// from ring averages; skin weights on up to 5 joints.
+// Optional look-alikes of the SMPL family's extra arrays: `vt`/`ft` texture coordinates (u
+// around, v up, with a seam at segment 0), and `posedirs` with `pose_columns` columns whose
+// column 135 (in SMPL's layout: R(0,0) - 1 of joint 16, left_shoulder; the last column if
+// there are fewer) lifts every vertex by `pose_lift` metres per unit of its pose feature.
 struct Cylinder {
   double radius = 0.15;
   double height = 1.7;
@@ -52,6 +57,9 @@ struct Cylinder {
   int rings = 41;
   int components = 10;
   int joints = 24;
+  bool uvs = false;
+  int pose_columns = 0;
+  double pose_lift = 0.05;
 };
 std::map<std::string, Array> cylinder_model(const Cylinder& c = {});
 

@@ -9,10 +9,17 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <tuple>
+
+#include <Eigen/Geometry>
 
 #include "body/atomic_file.hpp"
+#include "body/bone_frames.hpp"
+#include "body/export_presets.hpp"
 #include "body/gltf_export.hpp"
 #include "body/model_loader.hpp"
+#include "body/posing.hpp"
 #include "npz_fixtures.hpp"
 
 using Catch::Contains;
@@ -27,6 +34,18 @@ body::Model cylinder(int joints = 24, int components = 10) {
   const auto path = fixtures::scratch_dir("gltf-model-" + std::to_string(joints)) / "cyl.npz";
   fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
   return body::load_model(path, components);
+}
+
+// A fixture model with SMPL-family look-alike arrays, loaded with `components` shape and
+// `expressions` expression components.
+body::Model family_model(const fixtures::Cylinder& c, const std::string& tag, int components = 0,
+                         int expressions = 0) {
+  const auto path = fixtures::scratch_dir("family-" + tag) / (tag + ".npz");
+  fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
+  body::Model m = body::load_model(path, components, expressions);
+  CHECK(m.posedirs.size() == 0);  // read on demand only
+  body::load_pose_correctives(m);
+  return m;
 }
 
 Eigen::VectorXf some_betas(int k) {
@@ -68,9 +87,51 @@ int run_command(const std::string& cmd, std::string& output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// World matrix of every node (glTF: parent * T * R * S), by walking down from the roots.
+std::vector<Eigen::Matrix4d> world_matrices(const tinygltf::Model& doc) {
+  std::vector<Eigen::Matrix4d> world(doc.nodes.size(), Eigen::Matrix4d::Identity());
+  std::vector<int> parent(doc.nodes.size(), -1);
+  for (std::size_t i = 0; i < doc.nodes.size(); ++i) {
+    for (int c : doc.nodes[i].children) parent[static_cast<std::size_t>(c)] = static_cast<int>(i);
+  }
+  std::function<Eigen::Matrix4d(int)> get = [&](int i) -> Eigen::Matrix4d {
+    const auto& n = doc.nodes[static_cast<std::size_t>(i)];
+    Eigen::Matrix4d local = Eigen::Matrix4d::Identity();
+    if (n.rotation.size() == 4) {
+      local.topLeftCorner<3, 3>() =
+          Eigen::Quaterniond(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])
+              .toRotationMatrix();
+    }
+    if (n.translation.size() == 3) {
+      local.topRightCorner<3, 1>() =
+          Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
+    }
+    const int p = parent[static_cast<std::size_t>(i)];
+    return p < 0 ? local : Eigen::Matrix4d(get(p) * local);
+  };
+  for (std::size_t i = 0; i < doc.nodes.size(); ++i) world[i] = get(static_cast<int>(i));
+  return world;
+}
+
+// Largest |a - b| over the vertices (a: output order, 3 floats each; b: model order).
+float max_vertex_error(const std::vector<float>& a, const body::Vertices& b) {
+  float e = 0.0f;
+  for (Eigen::Index v = 0; v < b.rows(); ++v) {
+    for (int k = 0; k < 3; ++k) {
+      e = std::max(e, std::abs(a[static_cast<std::size_t>(3 * v + k)] - b(v, k)));
+    }
+  }
+  return e;
+}
+
+const tinygltf::Node& joint_node(const tinygltf::Model& doc, int j) {
+  return doc.nodes.at(
+      static_cast<std::size_t>(doc.skins.at(0).joints.at(static_cast<std::size_t>(j))));
+}
+
 }  // namespace
 
-TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gltf]") {
+TEST_CASE("gltf: the base mesh is the design; one morph target per component edits it", "[gltf]") {
   const auto model = cylinder();
   const auto betas = some_betas(10);
   const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
@@ -85,60 +146,57 @@ TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gl
   const auto& prim = doc.meshes[0].primitives.at(0);
   const int V = model.vertex_count();
 
-  // Base + sum(weights * targets) reproduces the evaluated, grounded body.
-  auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  // At zero weights (the default) the mesh is the evaluated, grounded design.
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
   REQUIRE(base.size() == static_cast<std::size_t>(3 * V));
+  CHECK(max_vertex_error(base, mesh.vertices) < 1e-5f);
   REQUIRE(prim.targets.size() == 10);
   REQUIRE(doc.meshes[0].weights.size() == 10);
-  for (std::size_t k = 0; k < 10; ++k) {
-    CHECK(doc.meshes[0].weights[k] == Approx(betas[static_cast<Eigen::Index>(k)]));
-    const auto t = accessor_data<float>(doc, prim.targets[k].at("POSITION"), 3);
-    for (std::size_t i = 0; i < base.size(); ++i) {
-      base[i] += static_cast<float>(doc.meshes[0].weights[k]) * t[i];
-    }
+  for (double w : doc.meshes[0].weights) CHECK(w == 0.0);
+  // Weight w on target k moves the body to beta_k + w (same ground offset).
+  for (int k : {0, 1, 4}) {
+    const auto t =
+        accessor_data<float>(doc, prim.targets[static_cast<std::size_t>(k)].at("POSITION"), 3);
+    auto moved = base;
+    for (std::size_t i = 0; i < moved.size(); ++i) moved[i] += 0.7f * t[i];
+    Eigen::VectorXf b = betas;
+    b[k] += 0.7f;
+    auto expect = body::evaluate(model, b);
+    expect.vertices.col(1).array() += offset;
+    CHECK(max_vertex_error(moved, expect.vertices) < 1e-5f);
   }
-  float max_err = 0.0f;
-  for (int v = 0; v < V; ++v) {
-    for (int a = 0; a < 3; ++a) {
-      max_err = std::max(max_err,
-                         std::abs(base[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
-    }
-  }
-  CHECK(max_err < 1e-5f);
   CHECK(offset == Approx(-body::evaluate(model, betas).vertices.col(1).minCoeff()));
 
   const auto normals = accessor_data<float>(doc, prim.attributes.at("NORMAL"), 3);
-  CHECK(normals[30] == Approx(mesh.normals(10, 0)));
+  CHECK(normals[30] == Approx(mesh.normals(10, 0)).margin(1e-6));
   const auto idx = accessor_data<std::uint32_t>(doc, prim.indices, 1);
   REQUIRE(idx.size() == static_cast<std::size_t>(model.faces.size()));
   CHECK(std::equal(idx.begin(), idx.end(), model.faces.data()));
+  CHECK(prim.attributes.count("TEXCOORD_0") == 0);  // the fixture has no vt/ft
 
   // Skin: 24 joints named after SMPL, hierarchy from kintree_table, weights normalised top 4.
   REQUIRE(doc.skins.size() == 1);
   const auto& skin = doc.skins[0];
   REQUIRE(skin.joints.size() == 24);
-  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[0])).name == "pelvis");
-  CHECK(doc.nodes.at(static_cast<std::size_t>(skin.joints[16])).name == "left_shoulder");
+  CHECK(joint_node(doc, 0).name == "pelvis");
+  CHECK(joint_node(doc, 16).name == "left_shoulder");
   for (int j = 1; j < 24; ++j) {
     const int parent_node =
         skin.joints[static_cast<std::size_t>(model.parents[static_cast<std::size_t>(j)])];
     const auto& ch = doc.nodes.at(static_cast<std::size_t>(parent_node)).children;
     CHECK(std::find(ch.begin(), ch.end(), skin.joints[static_cast<std::size_t>(j)]) != ch.end());
   }
-  // Global joint position = sum of translations up the chain = evaluated, grounded joint.
-  for (int j : {0, 7, 23}) {
-    Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int k = j; k >= 0; k = model.parents[static_cast<std::size_t>(k)]) {
-      const auto& t =
-          doc.nodes.at(static_cast<std::size_t>(skin.joints[static_cast<std::size_t>(k)]))
-              .translation;
-      p += Eigen::Vector3d(t[0], t[1], t[2]);
-    }
-    CHECK(p.cast<float>().isApprox(mesh.joints.row(j).transpose(), 1e-5f));
-  }
+  // Each joint's world position is the design's joint; world * inverse bind = identity.
+  const auto world = world_matrices(doc);
   const auto ibm = accessor_data<float>(doc, skin.inverseBindMatrices, 16);
-  CHECK(ibm[16 * 7 + 13] == Approx(-mesh.joints(7, 1)));
-  CHECK(ibm[16 * 7 + 15] == Approx(1.0));
+  for (int j = 0; j < 24; ++j) {
+    const Eigen::Matrix4d& w =
+        world[static_cast<std::size_t>(skin.joints[static_cast<std::size_t>(j)])];
+    CHECK(w.topRightCorner<3, 1>().cast<float>().isApprox(mesh.joints.row(j).transpose(), 1e-5f));
+    const Eigen::Matrix4d inv =
+        Eigen::Map<const Eigen::Matrix4f>(ibm.data() + 16 * j).cast<double>();
+    CHECK((w * inv - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() < 1e-5);
+  }
 
   const auto w = accessor_data<float>(doc, prim.attributes.at("WEIGHTS_0"), 4);
   const auto jj = accessor_data<std::uint8_t>(doc, prim.attributes.at("JOINTS_0"), 4);
@@ -169,7 +227,7 @@ TEST_CASE("gltf: round trip of a .glb with one morph target per component", "[gl
   CHECK(doc.meshes[0].extras.Get("targetNames").Get(3).Get<std::string>() == "shape_03");
 }
 
-TEST_CASE("gltf: default morph targets split +-3 sigma with weights in [0, 1]", "[gltf]") {
+TEST_CASE("gltf: default morph targets split +-3 sigma, all default weights 0", "[gltf]") {
   const auto model = cylinder();
   Eigen::VectorXf betas(10);
   betas << 1.5f, -3.0f, 0.0f, 0.3f, -0.6f, 2.0f, -1.0f, 0.0f, 3.0f, -0.1f;
@@ -180,33 +238,26 @@ TEST_CASE("gltf: default morph targets split +-3 sigma with weights in [0, 1]", 
   const auto& prim = gm.primitives.at(0);
   REQUIRE(prim.targets.size() == 20);
   REQUIRE(gm.weights.size() == 20);
-  for (int k = 0; k < 10; ++k) {
-    const double b = betas[k];
-    CHECK(gm.weights[static_cast<std::size_t>(2 * k)] == Approx(b > 0 ? b / 3 : 0.0));
-    CHECK(gm.weights[static_cast<std::size_t>(2 * k + 1)] == Approx(b < 0 ? -b / 3 : 0.0));
-  }
-  for (double w : gm.weights) {
-    CHECK(w >= 0.0);
-    CHECK(w <= 1.0);
-  }
+  for (double w : gm.weights) CHECK(w == 0.0);
   CHECK(gm.extras.Get("targetNames").Get(2).Get<std::string>() == "shape_01_pos");
   CHECK(gm.extras.Get("targetNames").Get(3).Get<std::string>() == "shape_01_neg");
-  // base + sum(w * target) is the chosen, grounded body.
-  auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
-  for (std::size_t t = 0; t < 20; ++t) {
-    const auto d = accessor_data<float>(doc, prim.targets[t].at("POSITION"), 3);
-    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += static_cast<float>(gm.weights[t]) * d[i];
-  }
+  // shape_01_neg at weight 0.5 takes beta 1 from -3 to -4.5; shape_00_pos at 1 from 1.5 to 4.5.
   auto mesh = body::evaluate(model, betas);
-  body::place_on_ground(mesh);
-  float max_err = 0.0f;
-  for (int v = 0; v < model.vertex_count(); ++v) {
-    for (int a = 0; a < 3; ++a) {
-      max_err = std::max(max_err,
-                         std::abs(pos[static_cast<std::size_t>(3 * v + a)] - mesh.vertices(v, a)));
-    }
+  const float offset = body::place_on_ground(mesh);
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  CHECK(max_vertex_error(base, mesh.vertices) < 1e-5f);
+  for (const auto& [target, weight, component, change] :
+       std::vector<std::tuple<int, float, int, float>>{{3, 0.5f, 1, -1.5f}, {0, 1.0f, 0, 3.0f}}) {
+    auto pos = base;
+    const auto d =
+        accessor_data<float>(doc, prim.targets[static_cast<std::size_t>(target)].at("POSITION"), 3);
+    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += weight * d[i];
+    Eigen::VectorXf b = betas;
+    b[component] += change;
+    auto expect = body::evaluate(model, b);
+    expect.vertices.col(1).array() += offset;
+    CHECK(max_vertex_error(pos, expect.vertices) < 1e-5f);
   }
-  CHECK(max_err < 1e-5f);
   CHECK(doc.nodes.at(0).extras.Get("betas").Get(1).GetNumberAsDouble() == Approx(-3.0));
 }
 
@@ -302,6 +353,38 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
     }
   }
   REQUIRE(files.size() == 12);
+  // Every rest pose and preset, on the default model and on SMPL+H / SMPL-X / STAR look-alikes
+  // with UVs, pose correctives and expressions.
+  const body::Model def = body::load_default_model(10);
+  for (const auto& preset : body::export_presets()) {
+    const auto p = dir / ("preset_" + preset.name + preset.extension);
+    body::export_gltf(def, some_betas(10), p, preset.options);
+    files.push_back(p);
+  }
+  fixtures::Cylinder c;
+  c.uvs = true;
+  c.joints = 52;
+  c.components = 16;
+  c.pose_columns = 9 * 51;
+  const auto smplh = family_model(c, "v-smplh", 0);
+  c.joints = 55;
+  c.components = 20;
+  c.pose_columns = 9 * 54;
+  const auto smplx = family_model(c, "v-smplx", 0, 5);
+  c.joints = 24;
+  c.components = 10;
+  c.pose_columns = 93;
+  const auto star = family_model(c, "v-star", 0);
+  for (const auto* m : {&smplh, &smplx, &star}) {
+    for (const char* ext : {".glb", ".gltf", ".vrm"}) {
+      body::ExportOptions opt;
+      opt.rest_pose = body::RestPose::t;
+      const auto p = dir / (m->name + ext);
+      body::export_gltf(*m, some_betas(m->component_count()), p, opt);
+      files.push_back(p);
+    }
+  }
+  REQUIRE(files.size() == 26);
   for (const auto& f : files) {
     std::string report;
     const int rc = run_command("node '" + script + "' '" + f.string() + "'", report);
@@ -309,4 +392,346 @@ TEST_CASE("gltf: exported files pass the Khronos glTF validator", "[gltf][valida
     CHECK(rc == 0);
     CHECK_THAT(report, Contains(": 0 errors, 0 warnings"));
   }
+}
+
+TEST_CASE("gltf: morph target count (the CLI warns above 200)", "[gltf][presets]") {
+  fixtures::Cylinder c;
+  c.joints = 55;
+  c.components = 20;
+  const auto smplx = family_model(c, "count", 0, 7);
+  body::ExportOptions opt;
+  CHECK(body::morph_target_count(smplx, opt) == 2 * 10 + 7);
+  opt.morph_encoding = body::MorphEncoding::betas;
+  CHECK(body::morph_target_count(smplx, opt) == 10 + 7);
+  opt.morph_targets = false;
+  CHECK(body::morph_target_count(smplx, opt) == 7);
+  c.joints = 24;
+  c.components = 120;
+  const auto many = family_model(c, "many", 0);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) == 240);
+  CHECK(body::morph_target_count(many, body::ExportOptions{}) > body::kManyMorphTargets);
+}
+
+TEST_CASE("gltf: every bone points at its child (local +Y), leaves continue their parent",
+          "[gltf][rig]") {
+  const body::Model model = body::load_default_model(10);
+  const auto betas = some_betas(10);
+  for (const auto pose : {body::RestPose::model, body::RestPose::t}) {
+    body::ExportOptions opt;
+    opt.rest_pose = pose;
+    const auto bytes = body::export_gltf_bytes(model, betas, true, opt);
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model doc;
+    std::string err, warn;
+    REQUIRE(loader.LoadBinaryFromMemory(&doc, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned>(bytes.size())));
+    const auto world = world_matrices(doc);
+    const auto targets = body::bone_targets(model.parents, model.joint_names);
+    double worst = 0.0;
+    for (int j = 0; j < model.joint_count(); ++j) {
+      const auto& wj =
+          world[static_cast<std::size_t>(doc.skins[0].joints[static_cast<std::size_t>(j)])];
+      const Eigen::Vector3d axis = wj.topLeftCorner<3, 3>() * Eigen::Vector3d::UnitY();
+      CHECK(std::abs(wj.topLeftCorner<3, 3>().determinant() - 1.0) < 1e-5);
+      const int c = targets[static_cast<std::size_t>(j)];
+      if (c < 0) continue;
+      const auto& wc =
+          world[static_cast<std::size_t>(doc.skins[0].joints[static_cast<std::size_t>(c)])];
+      const Eigen::Vector3d bone =
+          (wc.topRightCorner<3, 1>() - wj.topRightCorner<3, 1>()).normalized();
+      worst = std::max(worst, std::acos(std::min(1.0, axis.dot(bone))) * 180.0 / 3.14159265358979);
+    }
+    INFO("rest pose " << (pose == body::RestPose::t ? "T" : "model") << ": worst bone-to-child "
+                      << worst << " degrees");
+    // The matrices are float32: acos of a dot product within ~1e-7 of 1 reads up to ~0.03
+    // degrees, so the bound sits above that noise (0.01 failed on the built-in neutral model
+    // at 0.012).
+    CHECK(worst < 0.05);
+    // The main chains: pelvis -> spine1, spine3 -> neck, left_elbow -> left_wrist.
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[0])] == "spine1");
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[9])] == "neck");
+    CHECK(model.joint_names[static_cast<std::size_t>(targets[18])] == "left_wrist");
+    CHECK(targets[22] == -1);  // left_hand: a leaf
+  }
+}
+
+TEST_CASE("gltf: T-pose puts the arms horizontal, with the model's skinning", "[gltf][rig]") {
+  const body::Model model = body::load_default_model(10);
+  const auto betas = some_betas(10);
+  auto shaped = body::evaluate(model, betas);
+  const auto posed = body::t_posed(model, shaped);
+  for (const std::string side : {"left", "right"}) {
+    auto index = [&](const std::string& n) {
+      return static_cast<int>(
+          std::find(model.joint_names.begin(), model.joint_names.end(), side + n) -
+          model.joint_names.begin());
+    };
+    const int s = index("_shoulder"), e = index("_elbow"), w = index("_wrist");
+    const Eigen::Vector3f upper = (posed.joints.row(e) - posed.joints.row(s)).transpose();
+    const Eigen::Vector3f fore = (posed.joints.row(w) - posed.joints.row(e)).transpose();
+    INFO(side << " upper arm " << upper.transpose() << ", forearm " << fore.transpose());
+    CHECK(std::abs(upper.normalized().x()) > 0.9999f);
+    CHECK(std::abs(fore.normalized().x()) > 0.9999f);
+    CHECK(upper.x() * fore.x() > 0.0f);
+    CHECK((side == "left") == (upper.x() > 0.0f));  // SMPL's left is +x
+    // Bone lengths are kept (rigid rotations).
+    CHECK(upper.norm() ==
+          Approx((shaped.joints.row(e) - shaped.joints.row(s)).norm()).epsilon(1e-5));
+  }
+  // The legs and spine do not move (only the arms turn); feet stay on the ground.
+  CHECK(posed.vertices.col(1).minCoeff() == Approx(0.0).margin(1e-6));
+  body::place_on_ground(shaped);
+  CHECK((posed.joints.row(4) - shaped.joints.row(4)).norm() < 1e-5f);
+  // The export in T-pose holds that mesh; its morph targets are the posed shape changes.
+  body::ExportOptions opt;
+  opt.rest_pose = body::RestPose::t;
+  opt.morph_encoding = body::MorphEncoding::betas;
+  const auto path = fixtures::scratch_dir("gltf-tpose") / "t.glb";
+  body::export_gltf(model, betas, path, opt);
+  const auto doc = read_back(path);
+  const auto& prim = doc.meshes.at(0).primitives.at(0);
+  const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  CHECK(max_vertex_error(base, posed.vertices) < 1e-5f);
+  // Target 2 = the same rotations applied to the body with beta_2 + 1, minus the design.
+  const body::Rotations local = body::t_pose_rotations(model, body::evaluate(model, betas).joints);
+  const body::Skinning skin(model, local);
+  Eigen::VectorXf b2 = betas;
+  b2[2] += 1.0f;
+  const auto s1 = body::evaluate(model, betas), s2 = body::evaluate(model, b2);
+  const body::Vertices expect =
+      skin.vertices(s2.vertices, s2.joints) - skin.vertices(s1.vertices, s1.joints);
+  const auto t2 = accessor_data<float>(doc, prim.targets.at(2).at("POSITION"), 3);
+  CHECK(max_vertex_error(t2, expect) < 1e-5f);
+  CHECK_THAT(doc.nodes.at(0).extras.Get("rest_pose").Get<std::string>(), Contains("T"));
+  // The skinning of the rest pose itself: identity rotations change nothing.
+  const body::Skinning rest(model, body::Rotations(24, Eigen::Matrix3f::Identity()));
+  CHECK((rest.vertices(s1.vertices, s1.joints) - s1.vertices).cwiseAbs().maxCoeff() < 1e-6f);
+}
+
+TEST_CASE("gltf: T-pose applies SMPL-layout pose correctives, skips other layouts", "[gltf][rig]") {
+  fixtures::Cylinder c;
+  c.pose_columns = 9 * 23;  // SMPL: 207
+  const auto with = family_model(c, "smpl-posedirs", 10);
+  c.pose_columns = 0;
+  const auto without = family_model(c, "smpl-plain", 10);
+  c.pose_columns = 93;  // STAR's quaternion layout: not applied
+  const auto star = family_model(c, "star", 10);
+  REQUIRE(with.posedirs.cols() == 207);
+  REQUIRE(star.posedirs.cols() == 93);
+  const auto betas = some_betas(10);
+  bool used = false;
+  const auto shaped = body::evaluate(with, betas);
+  const auto a = body::t_posed(with, shaped, &used);
+  CHECK(used);
+  const auto b = body::t_posed(without, body::evaluate(without, betas), &used);
+  CHECK_FALSE(used);
+  const auto s = body::t_posed(star, body::evaluate(star, betas), &used);
+  CHECK_FALSE(used);
+  CHECK((s.vertices - b.vertices).cwiseAbs().maxCoeff() < 1e-6f);
+  // The fixture's corrective column 135 is R(0,0) - 1 of the left shoulder, times 0.05 m on y
+  // for every vertex: the posed difference is the skinning of exactly that offset.
+  const body::Rotations local = body::t_pose_rotations(with, shaped.joints);
+  const float feature = local[16](0, 0) - 1.0f;
+  REQUIRE(std::abs(feature) > 0.1f);
+  body::Vertices offset = body::Vertices::Zero(with.vertex_count(), 3);
+  offset.col(1).setConstant(0.05f * feature);
+  const body::Skinning skin(with, local);
+  const body::Vertices zero_joints = body::Vertices::Zero(with.joint_count(), 3);
+  body::Vertices expect = b.vertices + skin.vertices(offset, zero_joints);
+  expect.col(1).array() -= expect.col(1).minCoeff();  // both are grounded
+  CHECK((a.vertices - expect).cwiseAbs().maxCoeff() < 1e-5f);
+  CHECK((a.vertices - b.vertices).cwiseAbs().maxCoeff() > 1e-3f);
+  CHECK(star.joint_names[16] == "left_shoulder");  // STAR uses SMPL's names
+}
+
+TEST_CASE("loader: SMPL+H and SMPL-X joint names built in; SMPL-X shape and expressions apart",
+          "[gltf][family]") {
+  fixtures::Cylinder c;
+  c.joints = 52;
+  c.components = 16;
+  const auto smplh = family_model(c, "smplh");
+  REQUIRE(smplh.joint_count() == 52);
+  CHECK(smplh.joint_names[21] == "right_wrist");
+  CHECK(smplh.joint_names[22] == "left_index1");
+  CHECK(smplh.joint_names[36] == "left_thumb3");
+  CHECK(smplh.joint_names[37] == "right_index1");
+  CHECK(smplh.joint_names[51] == "right_thumb3");
+  CHECK(smplh.parents[22] == 20);  // the fixture's hierarchy: fingers on the wrists
+  CHECK(smplh.total_components == 16);
+  CHECK(smplh.total_expressions == 0);
+
+  c.joints = 55;
+  c.components = 20;  // SMPL-X v1.0 layout: 10 shape + 10 expression
+  const auto smplx = family_model(c, "smplx", 0, 4);
+  REQUIRE(smplx.joint_count() == 55);
+  CHECK(smplx.joint_names[22] == "jaw");
+  CHECK(smplx.joint_names[23] == "left_eye_smplhf");
+  CHECK(smplx.joint_names[24] == "right_eye_smplhf");
+  CHECK(smplx.joint_names[25] == "left_index1");
+  CHECK(smplx.joint_names[54] == "right_thumb3");
+  CHECK(smplx.total_components == 10);
+  CHECK(smplx.component_count() == 10);  // "all" = all shape components, no expressions
+  CHECK(smplx.total_expressions == 10);
+  REQUIRE(smplx.expression_dirs.cols() == 4);
+  // Expression e is column 10 + e of the file's shapedirs (fixture: 0.002 sin(0.7 k (v+1) + a)).
+  CHECK(smplx.expression_dirs(3 * 7 + 1, 2) ==
+        Approx(0.002 * std::sin(0.7 * 12 * 8 + 1)).margin(1e-7));
+  CHECK(smplx.shapedirs(3 * 7 + 1, 9) == Approx(0.002 * std::sin(0.7 * 9 * 8 + 1)).margin(1e-7));
+  CHECK(body::load_model(smplx.source, 0, 0).expression_dirs.cols() == 0);
+  // A file with 400 columns and 55 joints is SMPL-X v1.1: 300 shape, 100 expressions.
+  c.components = 400;
+  c.rings = 5;
+  c.segments = 4;
+  const auto v11 = family_model(c, "smplx-v11", 0, 100);
+  CHECK(v11.total_components == 300);
+  CHECK(v11.total_expressions == 100);
+  CHECK(v11.expression_dirs.cols() == 100);
+
+  body::ExportOptions opt;
+  opt.morph_encoding = body::MorphEncoding::betas;
+  const auto path = fixtures::scratch_dir("gltf-smplx") / "x.gltf";
+  body::export_gltf(smplx, some_betas(10), path, opt);
+  const auto doc = read_back(path);
+  const auto& gm = doc.meshes.at(0);
+  REQUIRE(gm.primitives.at(0).targets.size() == 14);
+  CHECK(gm.extras.Get("targetNames").Get(9).Get<std::string>() == "shape_09");
+  CHECK(gm.extras.Get("targetNames").Get(13).Get<std::string>() == "expr_03");
+  CHECK(joint_node(doc, 22).name == "jaw");
+  CHECK(joint_node(doc, 54).name == "right_thumb3");
+  // expr_01 at weight 1 is the body with expression 1 added.
+  const auto& prim = gm.primitives.at(0);
+  auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  const auto d = accessor_data<float>(doc, prim.targets.at(11).at("POSITION"), 3);
+  for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += d[i];
+  auto mesh = body::evaluate(smplx, some_betas(10));
+  body::place_on_ground(mesh);
+  Eigen::Map<Eigen::VectorXf>(mesh.vertices.data(), mesh.vertices.size()) +=
+      smplx.expression_dirs.col(1);
+  CHECK(max_vertex_error(pos, mesh.vertices) < 1e-5f);
+}
+
+TEST_CASE("gltf: UVs from vt/ft, vertices split along the seam", "[gltf][family]") {
+  fixtures::Cylinder c;
+  c.uvs = true;
+  const auto model = family_model(c, "uv", 10);
+  REQUIRE(model.uvs.rows() == (c.segments + 1) * c.rings + 2);
+  const auto path = fixtures::scratch_dir("gltf-uv") / "uv.glb";
+  body::export_gltf(model, some_betas(10), path);
+  const auto doc = read_back(path);
+  const auto& prim = doc.meshes.at(0).primitives.at(0);
+  REQUIRE(prim.attributes.count("TEXCOORD_0") == 1);
+  const auto uv = accessor_data<float>(doc, prim.attributes.at("TEXCOORD_0"), 2);
+  const auto pos = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
+  const std::size_t n = uv.size() / 2;
+  // One extra vertex per ring on the seam (u = 0 and u = 1 at the same place).
+  CHECK(n == static_cast<std::size_t>(model.vertex_count() + c.rings));
+  const auto idx = accessor_data<std::uint32_t>(doc, prim.indices, 1);
+  REQUIRE(idx.size() == static_cast<std::size_t>(model.faces.size()));
+  // Every corner: same position as the model's vertex, the file's (u, 1 - v).
+  auto mesh = body::evaluate(model, some_betas(10));
+  body::place_on_ground(mesh);
+  float worst_pos = 0.0f, worst_uv = 0.0f;
+  for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t o = idx[static_cast<std::size_t>(3 * f + k)];
+      const auto v = model.faces(f, k);
+      const auto t = model.uv_faces(f, k);
+      for (int a = 0; a < 3; ++a) {
+        worst_pos = std::max(
+            worst_pos, std::abs(pos[3 * o + static_cast<std::size_t>(a)] - mesh.vertices(v, a)));
+      }
+      worst_uv = std::max(worst_uv, std::abs(uv[2 * o] - model.uvs(t, 0)));
+      worst_uv = std::max(worst_uv, std::abs(uv[2 * o + 1] - (1.0f - model.uvs(t, 1))));
+    }
+  }
+  CHECK(worst_pos < 1e-5f);
+  CHECK(worst_uv < 1e-7f);
+  // Morph targets and skin attributes have the same (split) vertex count.
+  CHECK(doc.accessors.at(static_cast<std::size_t>(prim.targets.at(0).at("POSITION"))).count == n);
+  CHECK(doc.accessors.at(static_cast<std::size_t>(prim.attributes.at("WEIGHTS_0"))).count == n);
+}
+
+TEST_CASE("gltf: .vrm holds VRMC_vrm with meta and the humanoid bone map", "[gltf][vrm]") {
+  const body::Model model = body::load_default_model(10);
+  const auto path = fixtures::scratch_dir("gltf-vrm") / "avatar.vrm";
+  body::ExportOptions opt;
+  opt.vrm.authors = {"A. Designer"};
+  opt.vrm.name = "Test avatar";
+  body::export_gltf(model, some_betas(10), path, opt);
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model doc;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&doc, &err, &warn, path.string()));
+  REQUIRE(std::find(doc.extensionsUsed.begin(), doc.extensionsUsed.end(), "VRMC_vrm") !=
+          doc.extensionsUsed.end());
+  const auto& vrm = doc.extensions.at("VRMC_vrm");
+  CHECK(vrm.Get("specVersion").Get<std::string>() == "1.0");
+  CHECK(vrm.Get("meta").Get("name").Get<std::string>() == "Test avatar");
+  CHECK(vrm.Get("meta").Get("authors").Get(0).Get<std::string>() == "A. Designer");
+  CHECK(vrm.Get("meta").Get("licenseUrl").Get<std::string>() == "https://vrm.dev/licenses/1.0/");
+  const auto& bones = vrm.Get("humanoid").Get("humanBones");
+  const std::vector<std::pair<std::string, std::string>> expect = {
+      {"hips", "pelvis"},
+      {"spine", "spine1"},
+      {"chest", "spine2"},
+      {"upperChest", "spine3"},
+      {"neck", "neck"},
+      {"head", "head"},
+      {"leftShoulder", "left_collar"},
+      {"leftUpperArm", "left_shoulder"},
+      {"leftLowerArm", "left_elbow"},
+      {"leftHand", "left_wrist"},
+      {"rightUpperLeg", "right_hip"},
+      {"rightLowerLeg", "right_knee"},
+      {"rightFoot", "right_ankle"},
+      {"rightToes", "right_foot"}};
+  for (const auto& [role, joint] : expect) {
+    INFO(role);
+    REQUIRE(bones.Has(role));
+    CHECK(
+        doc.nodes.at(static_cast<std::size_t>(bones.Get(role).Get("node").GetNumberAsInt())).name ==
+        joint);
+  }
+  CHECK_FALSE(bones.Has("leftThumbProximal"));  // no fingers in a 24-joint skeleton
+  // T-pose: the left hand lies level with the left shoulder, out on +x.
+  const auto world = world_matrices(doc);
+  const auto node_of = [&](const char* role) {
+    return static_cast<std::size_t>(bones.Get(role).Get("node").GetNumberAsInt());
+  };
+  const auto& sh = world.at(node_of("leftUpperArm"));
+  const auto& hand = world.at(node_of("leftHand"));
+  CHECK(hand(1, 3) == Approx(sh(1, 3)).margin(1e-4));
+  CHECK(hand(0, 3) > sh(0, 3) + 0.3);
+
+  // A skeleton without the humanoid joints cannot be a VRM; a .vrm cannot be A-posed.
+  const auto other = cylinder(5, 4);
+  CHECK_THROWS_WITH(body::export_gltf(other, some_betas(4), path.parent_path() / "x.vrm"),
+                    Contains("x.vrm") && Contains("T-pose needs"));
+  opt.rest_pose = body::RestPose::model;
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt), Contains("T-pose"));
+  opt.rest_pose = body::RestPose::automatic;
+  opt.vrm.commercial_usage = "free";
+  CHECK_THROWS_WITH(body::export_gltf(model, some_betas(10), path, opt),
+                    Contains("commercialUsage") && Contains("'free'"));
+}
+
+TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
+  REQUIRE(body::export_presets().size() == 5);
+  for (const char* name : {"blender", "unity", "unreal", "threejs", "vrm"}) {
+    INFO(name);
+    CHECK(body::find_export_preset(name).has_value());
+  }
+  CHECK_FALSE(body::find_export_preset("maya").has_value());
+  CHECK(body::find_export_preset("vrm")->extension == ".vrm");
+  CHECK(body::find_export_preset("threejs")->options.morph_encoding == body::MorphEncoding::betas);
+  CHECK(body::find_export_preset("unity")->options.rest_pose == body::RestPose::t);
+  CHECK(body::find_export_preset("blender")->options.rest_pose == body::RestPose::model);
+  const body::Model model = body::load_default_model(10);
+  const auto path = fixtures::scratch_dir("gltf-presets") / "unity.glb";
+  body::export_gltf(model, some_betas(10), path, body::find_export_preset("unity")->options);
+  const auto doc = read_back(path);
+  CHECK(joint_node(doc, 0).name == "hips");
+  CHECK(joint_node(doc, 16).name == "leftUpperArm");
+  CHECK(joint_node(doc, 22).name == "left_hand");  // no humanoid role: the model's name
 }

@@ -8,9 +8,11 @@
 #include <fstream>
 #include <limits>
 
+#include "body/gltf_export.hpp"
 #include "body/model_loader.hpp"
 #include "body/npz_reader.hpp"
 #include "npz_fixtures.hpp"
+#include "util/utf8.hpp"
 
 using Catch::Contains;
 using fixtures::Array;
@@ -122,7 +124,7 @@ TEST_CASE("loader: object arrays and extra arrays are skipped, optional arrays u
   auto arrays = fixtures::cylinder_model();
   auto entries = fixtures::encode_model(arrays);
   entries.push_back({"joint2num", fixtures::encode_npy_raw("|O", "()", false, "\x80\x02}q\x00.")});
-  entries.push_back({"posedirs", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
+  entries.push_back({"lmk_faces_idx", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
   entries.push_back(
       {"variance_share",
        fixtures::encode_npy({{10}, {.3, .2, .1, .1, .1, .05, .05, .04, .03, .03}, Dtype::f8})});
@@ -131,6 +133,29 @@ TEST_CASE("loader: object arrays and extra arrays are skipped, optional arrays u
   const auto m = body::load_model(path, 4);
   REQUIRE(m.variance_share.size() == 4);
   CHECK(m.variance_share[0] == Approx(0.3));
+  CHECK(m.posedirs.size() == 0);
+  CHECK(m.uvs.rows() == 0);
+
+  // Optional arrays the exporter uses (posedirs for a T-pose, vt/ft for UVs) are checked.
+  auto bad = entries;
+  bad.push_back({"posedirs", fixtures::encode_npy({{2, 2}, {1, 2, 3, 4}, Dtype::f8})});
+  fixtures::write_npz(path, bad);
+  auto loaded = body::load_model(path);  // posedirs are read on demand only
+  CHECK_THROWS_WITH(body::load_pose_correctives(loaded),
+                    Contains("extra.npz") && Contains("'posedirs'") && Contains("(V, 3, P)"));
+  bad = entries;
+  bad.push_back({"vt", fixtures::encode_npy({{2, 2}, {0, 0, 1, 1}, Dtype::f4})});
+  fixtures::write_npz(path, bad);
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'vt'") && Contains("'ft'"));
+  bad.push_back({"ft", fixtures::encode_npy({{1, 3}, {0, 1, 1}, Dtype::i4})});
+  fixtures::write_npz(path, bad);
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'ft'") && Contains("(F, 3)"));
+  fixtures::Cylinder c;
+  c.uvs = true;
+  auto arrays_uv = fixtures::cylinder_model(c);
+  arrays_uv["ft"].values[5] = 1e6;
+  fixtures::write_npz(path, fixtures::encode_model(arrays_uv));
+  CHECK_THROWS_WITH(body::load_model(path), Contains("'ft'") && Contains("out of range"));
 }
 
 TEST_CASE("loader: joint names for non-SMPL skeletons", "[loader]") {
@@ -335,4 +360,30 @@ TEST_CASE("loader: the embedded default model", "[loader]") {
   CHECK(height < 2.1);
   const auto all = body::load_default_model(0);
   CHECK(all.component_count() == all.total_components);
+}
+
+TEST_CASE("loader: joint and file names that are not UTF-8 become valid UTF-8",
+          "[loader][errors]") {
+  // Issue 10, defect 6: 'inspect' said usable and 'export' failed with nlohmann's
+  // "[json.exception.type_error.316] invalid UTF-8 byte".
+  fixtures::Cylinder c;
+  c.joints = 5;
+  auto entries = fixtures::encode_model(fixtures::cylinder_model(c));
+  std::string names;
+  for (const std::string n : {"ro\xff", "a\xc3", "b", "\xed\xa0\x80", "ok"}) {
+    std::string s = n;
+    s.resize(4, '\0');
+    names += s;
+  }
+  entries.push_back({"joint_names", fixtures::encode_npy_raw("|S4", "(5,)", false, names)});
+  const auto path = fixtures::scratch_dir("loader-utf8") / "caf\xe9-\xff.npz";
+  fixtures::write_npz(path, entries);
+  const auto m = body::load_model(path);
+  CHECK(m.joint_names == std::vector<std::string>{"ro\xEF\xBF\xBD", "a\xEF\xBF\xBD", "b",
+                                                  "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD", "ok"});
+  CHECK(m.name == "caf\xEF\xBF\xBD-\xEF\xBF\xBD");
+  for (const auto& n : m.joint_names) CHECK(util::is_valid_utf8(n));
+  // The exporter takes the names as they are now: no library exception.
+  CHECK_NOTHROW(body::export_gltf_bytes(m, Eigen::VectorXf::Zero(2), true));
+  CHECK_NOTHROW(body::export_gltf_bytes(m, Eigen::VectorXf::Zero(2), false));
 }

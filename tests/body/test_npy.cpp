@@ -121,3 +121,23 @@ TEST_CASE("npy: broken files give clear errors", "[npy]") {
   CHECK_THROWS_WITH(parse(fixtures::encode_npy_raw("<f4", "(1,)", false, half)).to_int64(),
                     Catch::Contains("not an integer"));
 }
+
+TEST_CASE("npy: zero-width string dtypes are refused before any string is made", "[npy][errors]") {
+  // Issue 10, defect 7: '<U0' / '|S0' with a huge shape held no bytes, passed the size check
+  // and then allocated one string per element in to_strings() (length_error, terabytes).
+  for (const char* descr : {"<U0", "|S0", ">U0"}) {
+    INFO(descr);
+    CHECK_THROWS_WITH(parse(fixtures::encode_npy_raw(descr, "(1000000000000,)", false, "")),
+                      Catch::Contains("zero-width"));
+    CHECK_THROWS_WITH(parse(fixtures::encode_npy_raw(descr, "(3,)", false, "")),
+                      Catch::Contains("zero-width"));
+  }
+}
+
+TEST_CASE("npy: code points that are not Unicode become U+FFFD", "[npy]") {
+  std::string u;
+  for (std::uint32_t cp : {0x41u, 0xD800u, 0x110000u})
+    u.append(reinterpret_cast<const char*>(&cp), 4);
+  CHECK(parse(fixtures::encode_npy_raw("<U3", "(1,)", false, u)).to_strings() ==
+        std::vector<std::string>{"A\xEF\xBF\xBD\xEF\xBF\xBD"});
+}

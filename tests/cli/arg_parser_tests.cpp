@@ -44,9 +44,36 @@ TEST_CASE("bad values are reported with the option name", "[cli]") {
   CHECK_THROWS_WITH(parse({"cmd", "--dims", "five"}).get_int("dims", 1),
                     Catch::Contains("--dims") && Catch::Contains("five"));
   CHECK_THROWS_WITH(parse({"cmd", "--dims", "2.5"}).get_int("dims", 1), Catch::Contains("integer"));
-  CHECK_THROWS_WITH(parse({"cmd", "--x", "nan"}).get_double("x", 1), Catch::Contains("finite"));
+  CHECK_THROWS_WITH(parse({"cmd", "--x", "nan"}).get_double("x", 1),
+                    Catch::Contains("not a number"));
   CHECK_THROWS_AS(parse({"cmd", "--dims"}), cli::ArgError);
   CHECK_THROWS_WITH(parse({"cmd", "--bogus", "1"}).reject_unknown({"dims"}),
                     Catch::Contains("--bogus"));
   CHECK_THROWS_WITH(parse({"cmd"}).require("model"), Catch::Contains("--model"));
+}
+
+TEST_CASE("numbers users actually typed get the right message (issue 10)", "[cli]") {
+  // "-inf" is a (bad) value of --betas, not a missing value.
+  CHECK_THROWS_WITH(parse({"cmd", "--betas", "-inf"}, {}, {"betas"}).get_doubles("betas"),
+                    Catch::Contains("'-inf' is not a number"));
+  CHECK_THROWS_WITH(parse({"cmd", "--betas", "1", "-Infinity"}, {}, {"betas"}).get_doubles("betas"),
+                    Catch::Contains("'-Infinity' is not a number"));
+  // A tiny number underflows to (almost) zero: legal. A huge one is "too large".
+  const auto tiny = parse({"cmd", "--x", "1e-320"}).get_double("x", 1);
+  CHECK(tiny >= 0.0);
+  CHECK(tiny < 1e-300);
+  CHECK_THROWS_WITH(parse({"cmd", "--x", "1e400"}).get_double("x", 1),
+                    Catch::Contains("too large"));
+  // Empty fields and hexadecimal are errors, not [1, 2] and 16.
+  CHECK_THROWS_WITH(parse({"cmd", "--betas", "1,,2"}, {}, {"betas"}).get_doubles("betas"),
+                    Catch::Contains("empty value"));
+  CHECK_THROWS_WITH(parse({"cmd", "--betas", "1,"}, {}, {"betas"}).get_doubles("betas"),
+                    Catch::Contains("empty value"));
+  CHECK_THROWS_WITH(parse({"cmd", "--dims", "0x10"}).get_int("dims", 1),
+                    Catch::Contains("'0x10' is not a number"));
+  CHECK_THROWS_WITH(parse({"cmd", "--dims", "1e12"}).get_int("dims", 1),
+                    Catch::Contains("out of range"));
+  // Still fine: spaces around commas, exponents, signs.
+  CHECK(parse({"cmd", "--betas", "1 ,2", "+3e0", "-.5"}, {}, {"betas"}).get_doubles("betas") ==
+        std::vector<double>{1.0, 2.0, 3.0, -0.5});
 }

@@ -5,8 +5,8 @@
 #include "common/first_difference.hpp"
 
 #include "sps/plane_search.hpp"
-#include "sps/simulated_user.hpp"
-#include "sps/test_functions.hpp"
+#include "testing/simulated_user.hpp"
+#include "testing/test_functions.hpp"
 
 namespace {
 

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <stb_image_write.h>
 #include <Eigen/Geometry>
+
+#include "util/atomic_file.hpp"
 
 namespace default_model {
 
@@ -78,9 +81,15 @@ void draw_mesh(Image& image, int x0, int y0, int w, int h,
 }
 
 void write_png(const Image& image, const std::string& path) {
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(),
-                      3 * image.width))
-    throw std::runtime_error("cannot write " + path);
+  std::string encoded;  // encoded in memory, then written by the project's atomic writer
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 3, image.rgb.data(),
+                              3 * image.width))
+    throw std::runtime_error("cannot encode " + path);
+  util::write_file_atomically(path, encoded);
 }
 
 }  // namespace default_model

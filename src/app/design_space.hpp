@@ -1,0 +1,95 @@
+// The seam between the gallery and what it designs. The gallery (controller, view, window)
+// knows points x in [0,1]^n and cells that show them; a DesignSpace knows what a point means:
+// a body shape (BodySpace), a photo edit (PhotoSpace), ... It names the dimensions, prepares
+// a cell on the CPU (safe off the GL thread), draws a prepared cell into the bound cell
+// framebuffer, shows an inspector for a cell and exports a point to a file.
+//
+// This header holds no GL and no ImGui; implementations live in src/spaces/.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "render/camera.hpp"
+
+namespace app {
+
+// What a session stores about its space (in place of a body-specific model path).
+struct SpaceSettings {
+  std::string kind = "body";  // "body" or "photo"
+  std::string source;         // model (.npz) or image (.png/.jpg) file; empty = built-in default
+  int dimensions = 10;        // body: shape components explored; photo: always 12
+};
+
+// A point made ready for drawing on the CPU: a body's mesh, a photo edit's parameters...
+// Immutable once made, so it may be made on any thread and shared.
+class PreparedCell {
+ public:
+  virtual ~PreparedCell() = default;
+  Eigen::VectorXd x;
+  bool has_details = false;  // e.g. a body's measurements (costly; previews and hover only)
+};
+
+// How a cell is drawn. Spaces without a 3D view ignore the camera.
+struct CellLook {
+  const render::Camera* camera = nullptr;
+  bool muted = false;  // the "started from" preview
+};
+
+// The GPU side of one cell (GL thread only).
+class CellContent {
+ public:
+  virtual ~CellContent() = default;
+  virtual void upload(const PreparedCell& cell) = 0;
+  // Draws into the bound framebuffer over width x height pixels.
+  virtual void draw(int width, int height, const CellLook& look) = 0;
+};
+
+class DesignSpace {
+ public:
+  virtual ~DesignSpace() = default;
+
+  virtual SpaceSettings settings() const = 0;
+  // One line for the window: "body: default model, 10 components".
+  virtual std::string description() const = 0;
+  int dimensions() const { return settings().dimensions; }
+  virtual std::string dimension_name(int i) const = 0;
+  // The paper's choices: 3x3 for bodies, 5x5 for photos.
+  virtual int default_grid_size() const = 0;
+  // Bodies are 3D (one shared orbit camera); photos are flat.
+  virtual bool uses_camera() const = 0;
+  // Width / height of a preview (a standing body is taller than wide; a photo has its own).
+  virtual float preview_aspect() const = 0;
+
+  // CPU work for one cell; thread-safe. `details` adds what the inspector shows.
+  virtual std::shared_ptr<const PreparedCell> prepare(const Eigen::VectorXd& x,
+                                                      bool details) const = 0;
+  // GL thread only. Contents may share GPU resources the space keeps (a photo's texture).
+  virtual std::unique_ptr<CellContent> make_content() = 0;
+
+  // ImGui: what `shown` is (measurements, parameters), beside `reference` and the difference
+  // to it when given. Called inside an ImGui window, GL thread only.
+  virtual void draw_inspector(const PreparedCell& shown, const char* shown_label,
+                              const PreparedCell* reference, const char* reference_label) const = 0;
+
+  // Named numbers of a prepared cell with details, for tables and CSV files (a body's
+  // measurements in metres; nothing for a photo, whose x is all there is).
+  virtual std::vector<std::pair<std::string, double>> numbers(const PreparedCell& /*cell*/) const {
+    return {};
+  }
+
+  // Export: the file a point becomes (glTF for bodies, an image and its parameters for photos).
+  virtual std::string default_export_name() const = 0;  // "body.glb"
+  virtual std::string export_hint() const = 0;          // ".glb or .gltf"
+  // Writes the file(s) atomically; returns a short summary for the message line. Throws
+  // std::runtime_error naming the file and the problem.
+  virtual std::string export_point(const Eigen::VectorXd& x,
+                                   const std::filesystem::path& path) const = 0;
+};
+
+}  // namespace app

@@ -1,0 +1,476 @@
+#include "app/gallery_controller.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/session_store.hpp"
+
+namespace app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+SessionSettings session_settings(const SpaceSettings& space, int grid_size, int zoom_levels,
+                                 std::uint64_t seed) {
+  SessionSettings s;
+  s.space = space.kind;
+  s.model_path = space.source;
+  s.components = space.dimensions;
+  s.grid_size = grid_size;
+  s.zoom_levels = zoom_levels;
+  s.seed = seed;
+  return s;
+}
+
+SpaceSettings space_of(const SessionSettings& s) {
+  return SpaceSettings{s.space, s.model_path, s.components};
+}
+
+bool same_plane(const sps::Plane& a, const sps::Plane& b) {
+  return a.c.size() == b.c.size() && a.c == b.c && a.u == b.u && a.v == b.v;
+}
+
+}  // namespace
+
+GalleryController::GalleryController(ControllerOptions options, SpaceOpener opener,
+                                     double now_seconds)
+    : options_(std::move(options)), opener_(std::move(opener)), now_(now_seconds) {
+  try {
+    space_ = opener_(options_.space);
+  } catch (const std::exception& e) {
+    if (options_.space.source.empty()) throw;  // not even the built-in default opens
+    say(MessageKind::kError, std::string(e.what()) + " (showing the default instead)");
+    options_.space.source.clear();
+    space_ = opener_(options_.space);
+  }
+  options_.space = space_->settings();
+  const int grid = options_.grid_size > 0 ? options_.grid_size : space_->default_grid_size();
+  session_.emplace(session_settings(options_.space, grid, options_.zoom_levels, options_.seed));
+
+  if (options_.session_path.empty()) {
+    autosave_enabled_ = false;
+  } else {
+    LoadResult loaded = load_session(options_.session_path);
+    if (!loaded.problem.empty()) {
+      say(MessageKind::kError, loaded.problem);
+      if (loaded.set_aside.empty()) {
+        autosave_enabled_ = false;  // never overwrite a file we could not read or move
+        message_.text += " -- autosave is OFF for this run";
+      }
+    }
+    if (loaded.session) {
+      std::unique_ptr<DesignSpace> resumed_space;
+      std::string problem;
+      try {
+        resumed_space = opener_(space_of(loaded.session->settings()));
+        if (resumed_space->dimensions() != loaded.session->settings().components) {
+          throw std::runtime_error(
+              "the space now has " + std::to_string(resumed_space->dimensions()) +
+              " dimensions, the session " + std::to_string(loaded.session->settings().components));
+        }
+      } catch (const std::exception& e) {
+        problem = e.what();
+      }
+      if (!problem.empty()) {
+        keep_old_session_file("cannot resume the previous session: " + problem);
+      } else if (options_.resume == ResumePolicy::kYes) {
+        adopt(std::move(*loaded.session), std::move(resumed_space));
+        say(MessageKind::kInfo, "resumed the session from " + options_.session_path.string());
+      } else if (options_.resume == ResumePolicy::kAsk) {
+        pending_resume_ = std::move(loaded.session);
+        pending_resume_space_ = std::move(resumed_space);
+      } else {
+        keep_old_session_file("");
+      }
+    }
+  }
+  displayed_view_ = session_->view();
+  update_display();
+}
+
+GalleryController::~GalleryController() {
+  if (worker_.busy()) worker_.wait();  // a running submit finishes; its result is dropped
+}
+
+void GalleryController::say(MessageKind kind, std::string text) {
+  message_ = {kind, std::move(text)};
+  if (!options_.log) return;
+  if (kind == MessageKind::kError) {
+    std::cerr << "sequential-gallery: " << message_.text << std::endl;
+  } else {
+    std::cout << "[gallery] " << message_.text << std::endl;
+  }
+}
+
+std::string GalleryController::resume_description() const {
+  if (!pending_resume_) return "";
+  const auto& s = pending_resume_->settings();
+  char text[512];
+  std::snprintf(
+      text, sizeof text,
+      "%s, %d dimensions, %dx%d grid; %d finished plane(s), %d click(s) on the current "
+      "plane",
+      pending_resume_space_ ? pending_resume_space_->description().c_str() : s.space.c_str(),
+      s.components, s.grid_size, s.grid_size, pending_resume_->planes_done(),
+      pending_resume_->clicks_on_plane());
+  return text;
+}
+
+void GalleryController::begin_frame(double now_seconds) {
+  now_ = now_seconds;
+  poll_worker();
+  while (!queue_.empty()) {
+    const Intent next = std::move(queue_.front());
+    queue_.pop_front();
+    apply(next);
+  }
+  if (session_->submission_pending() && !worker_.busy() && submitted_generation_ != generation_ &&
+      !pending_resume_) {
+    worker_.start(session_->search(), session_->submission(), generation_,
+                  std::chrono::milliseconds(options_.optimizer_delay_ms));
+    submitted_generation_ = generation_;
+  }
+  update_display();
+}
+
+void GalleryController::wait_for_optimizer(double now_seconds) {
+  begin_frame(now_seconds);  // starts the job if one is due
+  if (!worker_.busy()) return;
+  if (auto result = worker_.wait()) install(std::move(*result));
+  update_display();
+}
+
+void GalleryController::save_now() {
+  if (!pending_resume_) autosave();
+}
+
+void GalleryController::apply(const Intent& i) {
+  // While the resume question is open, only its answers count.
+  if (pending_resume_ && !std::holds_alternative<intent::Resume>(i) &&
+      !std::holds_alternative<intent::StartNew>(i)) {
+    return;
+  }
+  std::visit(
+      Overloaded{
+          [&](const intent::ClickCell& c) { click(c); },
+          [&](const intent::UndoClick&) { undo_click(); },
+          [&](const intent::UndoPlane&) { undo_plane(); }, [&](const intent::Redo&) { redo(); },
+          [&](const intent::StartOver&) { start_over(); }, [&](const intent::Open& o) { open(o); },
+          [&](const intent::Resume&) { resume(); }, [&](const intent::StartNew&) { start_new(); },
+          [&](const intent::Export& e) { export_point(e.path); },
+          [&](const intent::UsePoint& u) { use_point(u.x); },
+          [&](const intent::Inspect& n) {
+            inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
+                             ? n.history_index
+                             : -1;
+          }},
+      i);
+}
+
+void GalleryController::click(const intent::ClickCell& c) {
+  if (session_->submission_pending()) {
+    say(MessageKind::kInfo, "computing the next plane, one moment...");
+    return;
+  }
+  // A click while the grid still zooms (a double-click's second click, an impatient click)
+  // would pick a cell the user has not seen yet: it is dropped, not counted as a zoom step.
+  if (animation_ == Animation::kZoom) {
+    ++ignored_clicks_;
+    return;
+  }
+  const sps::Plane before = session_->search().current_plane();
+  const ClickResult r = session_->click({c.col, c.row});
+  if (r == ClickResult::kIgnored) return;
+  redo_.clear();
+  inspected_ = -1;
+  after_change(before);
+  if (options_.log) {
+    std::cout << "[gallery] click cell " << c.row * session_->settings().grid_size + c.col + 1
+              << " (plane " << session_->planes_done() + 1 << ", level "
+              << session_->clicks_on_plane() << ")" << std::endl;
+  }
+  if (r == ClickResult::kPlaneFinished) {
+    say(MessageKind::kInfo, "choice submitted; computing the next plane...");
+  }
+}
+
+bool GalleryController::can_undo_click() const {
+  return !busy() && (session_->clicks_on_plane() > 0 || session_->planes_done() > 0);
+}
+
+void GalleryController::remember_for_redo() {
+  redo_.push_back(*session_);
+  if (redo_.size() > 64) redo_.erase(redo_.begin());
+}
+
+void GalleryController::undo_click() {
+  if (busy()) return;
+  const sps::Plane before = session_->search().current_plane();
+  Session snapshot = *session_;
+  if (session_->undo_click()) {
+    redo_.push_back(std::move(snapshot));
+    after_change(before);
+    say(MessageKind::kInfo, "undid the last click");
+  } else {
+    say(MessageKind::kInfo, "nothing to undo");
+  }
+}
+
+void GalleryController::undo_plane() {
+  if (busy()) return;
+  if (session_->planes_done() == 0) {
+    say(MessageKind::kInfo, "no finished plane to undo (Undo click takes back clicks)");
+    return;
+  }
+  const sps::Plane before = session_->search().current_plane();
+  Session snapshot = *session_;
+  // One meaning: back to the start of the last finished plane. Session::undo_plane first
+  // drops the clicks on the current plane, then the finished plane.
+  if (session_->clicks_on_plane() > 0) session_->undo_plane();
+  if (session_->undo_plane()) {
+    session_->undo_plane();  // the reopened plane starts without clicks
+    redo_.push_back(std::move(snapshot));
+    inspected_ = -1;
+    after_change(before);
+    say(MessageKind::kInfo,
+        "undid plane " + std::to_string(session_->planes_done() + 1) + "; choose on it again");
+  }
+}
+
+void GalleryController::redo() {
+  if (busy() || redo_.empty()) return;
+  const sps::Plane before = session_->search().current_plane();
+  session_ = std::move(redo_.back());
+  redo_.pop_back();
+  inspected_ = -1;
+  after_change(before);
+  say(MessageKind::kInfo, "redone");
+}
+
+void GalleryController::start_over() {
+  if (busy()) return;
+  const sps::Plane before = session_->search().current_plane();
+  remember_for_redo();
+  session_->start_over();
+  inspected_ = -1;
+  after_change(before);
+  say(MessageKind::kInfo, "started over: all preference data discarded (Redo brings it back)");
+}
+
+void GalleryController::open(const intent::Open& o) {
+  if (busy()) return;
+  try {
+    std::unique_ptr<DesignSpace> space = opener_(o.space);
+    const int grid = o.grid_size > 0 ? o.grid_size : space->default_grid_size();
+    Session fresh(
+        session_settings(space->settings(), grid, o.zoom_levels, session_->settings().seed + 1));
+    if (has_progress()) keep_old_session_file("");
+    const std::string what = space->description();
+    adopt(std::move(fresh), std::move(space));
+    autosave();
+    say(MessageKind::kSuccess, "opened " + what + "; new search started");
+  } catch (const std::exception& e) {
+    say(MessageKind::kError, std::string("cannot open: ") + e.what());
+  }
+}
+
+void GalleryController::resume() {
+  if (!pending_resume_) return;
+  Session resumed = std::move(*pending_resume_);
+  pending_resume_.reset();
+  adopt(std::move(resumed), std::move(pending_resume_space_));
+  say(MessageKind::kInfo, "resumed the previous session");
+}
+
+void GalleryController::start_new() {
+  if (!pending_resume_) return;
+  pending_resume_.reset();
+  pending_resume_space_.reset();
+  keep_old_session_file("");
+}
+
+void GalleryController::use_point(const Eigen::VectorXd& x) {
+  if (busy() || worker_.busy()) return;
+  if (x.size() != space_->dimensions() || !x.allFinite() || x.minCoeff() < 0.0 ||
+      x.maxCoeff() > 1.0) {
+    say(MessageKind::kError, "the slider values are outside the search box");
+    return;
+  }
+  const Eigen::VectorXd previous_best = session_->current_best();
+  Submission submission;
+  submission.chosen = x;
+  if ((x - previous_best).norm() > 1e-9) submission.extra_comparisons.push_back({x, previous_best});
+  redo_.clear();
+  ++generation_;
+  point_job_ = x;
+  worker_.start(session_->search(), std::move(submission), generation_,
+                std::chrono::milliseconds(options_.optimizer_delay_ms));
+  submitted_generation_ = generation_;
+  say(MessageKind::kInfo, "the slider values are submitted as your choice; computing...");
+}
+
+void GalleryController::export_point(const fs::path& path) {
+  if (path.empty()) {
+    say(MessageKind::kError, "choose a file name (" + space_->export_hint() + ")");
+    return;
+  }
+  try {
+    const std::string summary = space_->export_point(shown_point(), path);
+    last_export_ = path;
+    say(MessageKind::kSuccess, "saved " + summary);
+    if (options_.log) std::cout << "saved: " << path.string() << std::endl;
+  } catch (const std::exception& e) {
+    say(MessageKind::kError, std::string("save failed: ") + e.what());
+  }
+}
+
+Eigen::VectorXd GalleryController::shown_point() const {
+  if (inspected_ >= 0 && inspected_ < session_->planes_done()) {
+    return session_->history()[static_cast<std::size_t>(inspected_)].chosen;
+  }
+  return session_->current_best();
+}
+
+void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> space) {
+  if (space) {
+    space_ = std::move(space);
+    ++space_generation_;
+  }
+  session_ = std::move(session);
+  redo_.clear();
+  ++generation_;
+  inspected_ = -1;
+  animation_ = Animation::kNone;
+  morph_from_.clear();
+  displayed_view_ = session_->view();
+  update_display();
+}
+
+// What happens to a session file that a new search replaces: session_store's rotation of
+// set-aside copies (<name>.previous, .previous.1, ...).
+void GalleryController::keep_old_session_file(const std::string& why) {
+  if (options_.session_path.empty()) return;
+  std::error_code ec;
+  if (!fs::exists(options_.session_path, ec)) return;
+  std::string kept;
+  try {
+    kept = "kept it as " + set_aside_session(options_.session_path).string();
+  } catch (const std::exception& e) {
+    say(MessageKind::kError, (why.empty() ? std::string() : why + "; ") + e.what());
+    return;
+  }
+  if (!why.empty()) {
+    say(MessageKind::kError, why + "; " + kept);
+  } else {
+    say(MessageKind::kInfo, "new session; the previous one is " + kept.substr(5));
+  }
+}
+
+void GalleryController::autosave() {
+  if (!autosave_enabled_ || pending_resume_) return;
+  try {
+    save_session(*session_, options_.session_path);
+    autosave_status_.succeeded();
+  } catch (const std::exception& e) {
+    autosave_status_.failed(e.what());
+    say(MessageKind::kError, std::string("autosave failed: ") + e.what());
+  }
+}
+
+// After any change of the session: save, and animate from what is on screen to the new grid.
+void GalleryController::after_change(const sps::Plane& plane_before) {
+  ++generation_;
+  autosave();
+  animation_start_ = now_;
+  if (same_plane(session_->search().current_plane(), plane_before)) {
+    view_from_ = displayed_view_;
+    view_to_ = session_->view();
+    animation_ = Animation::kZoom;
+    animation_seconds_ = options_.zoom_seconds;
+  } else {
+    morph_from_.clear();
+    for (const auto& c : displayed_) morph_from_.push_back(c.x);
+    view_to_ = session_->view();
+    animation_ = Animation::kMorph;
+    animation_seconds_ = options_.morph_seconds;
+  }
+}
+
+void GalleryController::poll_worker() {
+  if (auto result = worker_.poll()) install(std::move(*result));
+}
+
+void GalleryController::install(SubmitWorker::Result result) {
+  if (point_job_) {
+    const Eigen::VectorXd x = *point_job_;
+    point_job_.reset();
+    if (result.generation != generation_) return;
+    if (!result.search) {
+      say(MessageKind::kError, "the optimizer failed: " + result.error);
+      return;
+    }
+    const sps::Plane before = session_->search().current_plane();
+    last_submit_seconds_ = result.seconds;
+    session_->adopt_point(x, std::move(*result.search));
+    inspected_ = -1;
+    after_change(before);
+    say(MessageKind::kSuccess, "the slider values are now the current best (plane " +
+                                   std::to_string(session_->planes_done()) + " done)");
+    return;
+  }
+  if (result.generation != generation_ || !session_->submission_pending()) return;  // stale
+  const sps::Plane before = session_->search().current_plane();
+  if (!result.search) {
+    session_->undo_click();
+    after_change(before);
+    say(MessageKind::kError,
+        "the optimizer failed: " + result.error + " (last click undone; please click again)");
+    return;
+  }
+  last_submit_seconds_ = result.seconds;
+  session_->finish_plane(std::move(*result.search));
+  after_change(before);
+  char text[96];
+  std::snprintf(text, sizeof text, "plane %d done (optimizer %.2f s); here is the next one",
+                session_->planes_done(), last_submit_seconds_);
+  say(MessageKind::kSuccess, text);
+}
+
+void GalleryController::update_display() {
+  const int n = session_->settings().grid_size;
+  const auto& plane = session_->search().current_plane();
+  double alpha = 1.0;
+  if (animation_ != Animation::kNone) {
+    const double t = animation_seconds_ > 0.0
+                         ? std::clamp((now_ - animation_start_) / animation_seconds_, 0.0, 1.0)
+                         : 1.0;
+    alpha = t * t * (3.0 - 2.0 * t);  // ease in and out
+    if (t >= 1.0) animation_ = Animation::kNone;
+  }
+  if (animation_ == Animation::kZoom) {
+    displayed_view_ = sps::interpolate_views(view_from_, view_to_, alpha);
+    displayed_ = sps::grid_points(plane, n, displayed_view_);
+    return;
+  }
+  displayed_view_ = session_->view();
+  displayed_ = sps::grid_points(plane, n, displayed_view_);
+  if (animation_ == Animation::kMorph && morph_from_.size() == displayed_.size()) {
+    for (std::size_t i = 0; i < displayed_.size(); ++i) {
+      if (morph_from_[i].size() == displayed_[i].x.size()) {
+        displayed_[i].x = (1.0 - alpha) * morph_from_[i] + alpha * displayed_[i].x;
+      }
+    }
+  }
+}
+
+}  // namespace app

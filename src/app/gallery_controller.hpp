@@ -1,0 +1,201 @@
+// The gallery's state and every change to it, without GL or ImGui: the design space, the session
+// (preference data, clicks, history), the optimizer worker, autosave, the resume question, the
+// grid animation and the message line.
+//
+// Nothing changes while a frame is being built: the view and the input handlers queue intents,
+// and begin_frame() applies them at the start of the next frame, before the UI toolkit starts a
+// new frame. So a texture the UI has queued for drawing is never freed under it (the order
+// polyscope's draw() keeps: apply changes, then build and draw the UI).
+#pragma once
+
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "app/design_space.hpp"
+#include "app/session.hpp"
+#include "app/session_store.hpp"
+#include "app/worker.hpp"
+#include "sps/zoom_grid.hpp"
+
+namespace app {
+
+enum class ResumePolicy { kAsk, kYes, kNo };
+
+struct ControllerOptions {
+  SpaceSettings space;  // the space of a new search (a resumed session brings its own)
+  int grid_size = 0;    // 0 = the space's default (3 for bodies, 5 for photos)
+  int zoom_levels = 4;
+  std::uint64_t seed = 1;
+  std::filesystem::path session_path;  // autosave file; empty = no autosave
+  ResumePolicy resume = ResumePolicy::kAsk;
+  double zoom_seconds = 1.5;
+  double morph_seconds = 0.6;
+  int optimizer_delay_ms = 0;  // testing: hold each optimizer run back
+  bool log = true;             // messages also go to stdout / stderr
+};
+
+// Opens a design space (loads a model, an image...); throws with a readable message.
+using SpaceOpener = std::function<std::unique_ptr<DesignSpace>(const SpaceSettings&)>;
+
+namespace intent {
+struct ClickCell {
+  int col = 0;
+  int row = 0;
+};
+struct UndoClick {};
+struct UndoPlane {};  // always: discard the last finished plane (and clicks made after it)
+struct Redo {};
+struct StartOver {};
+struct Open {  // a new search in another (or the same) space
+  SpaceSettings space;
+  int grid_size = 0;
+  int zoom_levels = 4;
+};
+struct Resume {};
+struct StartNew {};
+struct Export {
+  std::filesystem::path path;
+};
+struct Inspect {
+  int history_index = -1;  // -1: back to the current best
+};
+// Expert sliders' "use this": x becomes the current best, submitted as preferred over the
+// previous best (it ends the current plane).
+struct UsePoint {
+  Eigen::VectorXd x;
+};
+}  // namespace intent
+
+using Intent = std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
+                            intent::StartOver, intent::Open, intent::Resume, intent::StartNew,
+                            intent::Export, intent::Inspect, intent::UsePoint>;
+
+enum class MessageKind { kInfo, kSuccess, kError };
+struct Message {
+  MessageKind kind = MessageKind::kInfo;
+  std::string text;
+};
+
+class GalleryController {
+ public:
+  // Opens the space (falling back to its default with an error message if the file fails) and
+  // loads the session file per the resume policy. Throws if not even the default space opens.
+  GalleryController(ControllerOptions options, SpaceOpener opener, double now_seconds = 0.0);
+  ~GalleryController();
+  GalleryController(const GalleryController&) = delete;
+  GalleryController& operator=(const GalleryController&) = delete;
+
+  void queue(Intent intent) { queue_.push_back(std::move(intent)); }
+  // Start of a frame: installs a finished optimizer result, applies the queued intents in
+  // order, starts the next optimizer run if one is due, and advances the grid animation.
+  void begin_frame(double now_seconds);
+  // Blocks until a running optimizer job ends and installs its result (tests; shutdown).
+  void wait_for_optimizer(double now_seconds);
+  // Saves the session now (end of the program).
+  void save_now();
+
+  // --- State (read by the view) ---
+  const Session& session() const { return *session_; }
+  const DesignSpace& space() const { return *space_; }
+  DesignSpace& space() { return *space_; }
+  int space_generation() const { return space_generation_; }  // bumps when space_ is replaced
+  int generation() const { return generation_; }              // bumps on every session change
+
+  // The resume question at start-up.
+  const Session* resume_candidate() const { return pending_resume_ ? &*pending_resume_ : nullptr; }
+  std::string resume_description() const;
+
+  // The optimizer is due or running.
+  bool busy() const { return session_->submission_pending() || point_job_.has_value(); }
+  bool animating() const { return animation_ != Animation::kNone; }
+  bool zooming() const { return animation_ == Animation::kZoom; }
+  // The points the grid shows this frame (between two grids while animating).
+  const std::vector<sps::GridPoint>& displayed_cells() const { return displayed_; }
+
+  int inspected() const { return inspected_; }  // history index shown, -1 = current best
+  Eigen::VectorXd shown_point() const;          // the inspected choice or the current best
+
+  bool can_undo_click() const;
+  bool can_undo_plane() const { return !busy() && session_->planes_done() > 0; }
+  bool can_redo() const { return !busy() && !redo_.empty(); }
+  // Clicks or finished planes that a new search would discard.
+  bool has_progress() const {
+    return session_->planes_done() > 0 || session_->clicks_on_plane() > 0;
+  }
+
+  const Message& message() const { return message_; }
+  // Persistent: the last autosave failed (cleared by the next one that succeeds).
+  const std::string& autosave_problem() const { return autosave_status_.error(); }
+  bool autosave_enabled() const { return autosave_enabled_; }
+  const std::filesystem::path& session_path() const { return options_.session_path; }
+  const std::filesystem::path& last_export() const { return last_export_; }
+  double last_submit_seconds() const { return last_submit_seconds_; }
+  int ignored_clicks() const { return ignored_clicks_; }  // clicks dropped while animating
+  const ControllerOptions& options() const { return options_; }
+
+ private:
+  enum class Animation { kNone, kZoom, kMorph };
+
+  void apply(const Intent& intent);
+  void click(const intent::ClickCell& c);
+  void undo_click();
+  void undo_plane();
+  void redo();
+  void start_over();
+  void open(const intent::Open& o);
+  void resume();
+  void start_new();
+  void export_point(const std::filesystem::path& path);
+  void use_point(const Eigen::VectorXd& x);
+
+  void adopt(Session session, std::unique_ptr<DesignSpace> space);
+  void remember_for_redo();
+  void after_change(const sps::Plane& plane_before);
+  void poll_worker();
+  void autosave();
+  void keep_old_session_file(const std::string& why);
+  void install(SubmitWorker::Result result);
+  void update_display();
+  void say(MessageKind kind, std::string text);
+
+  ControllerOptions options_;
+  SpaceOpener opener_;
+  std::unique_ptr<DesignSpace> space_;
+  std::optional<Session> session_;
+  std::optional<Session> pending_resume_;
+  std::unique_ptr<DesignSpace> pending_resume_space_;
+  std::deque<Intent> queue_;
+  std::vector<Session> redo_;
+
+  SubmitWorker worker_;
+  std::optional<Eigen::VectorXd> point_job_;  // a slider point being submitted
+  int generation_ = 0;
+  int space_generation_ = 0;
+  int submitted_generation_ = -1;
+  double last_submit_seconds_ = 0.0;
+
+  bool autosave_enabled_ = true;
+  AutosaveStatus autosave_status_;
+  Message message_;
+  std::filesystem::path last_export_;
+  int inspected_ = -1;
+  int ignored_clicks_ = 0;
+
+  double now_ = 0.0;
+  Animation animation_ = Animation::kNone;
+  double animation_start_ = 0.0;
+  double animation_seconds_ = 1.0;
+  sps::GridView view_from_, view_to_, displayed_view_;
+  std::vector<Eigen::VectorXd> morph_from_;
+  std::vector<sps::GridPoint> displayed_;
+};
+
+}  // namespace app

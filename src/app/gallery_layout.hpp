@@ -1,0 +1,35 @@
+// Where the gallery's panels go, as pure arithmetic on the window size: the window (view and
+// cell rendering) and bench-gui (window size for a given cell size) share this one source.
+#pragma once
+
+#include <utility>
+
+namespace app {
+
+struct LayoutRect {
+  float x = 0, y = 0, w = 0, h = 0;
+};
+
+struct GalleryLayout {
+  LayoutRect toolbar;   // buttons, view toggles, plane / click count
+  LayoutRect messages;  // the message line: always visible, never below the fold
+  LayoutRect grid;      // square
+  LayoutRect side;      // previews, inspector, history, save, open (scrolls if short)
+  float cell = 0;       // cell edge, logical pixels
+  float gap = 0;
+};
+
+constexpr float kLayoutMargin = 8.0f;
+constexpr float kLayoutGap = 6.0f;
+constexpr float kToolbarHeight = 30.0f;
+constexpr float kMessageHeight = 26.0f;
+constexpr float kSidePanelMinWidth = 360.0f;  // below this the previews get too small
+constexpr float kSidePanelShare = 0.28f;      // of the window width at most, so the grid rules
+
+// `fixed_cell` > 0 fixes the cell edge (bench-gui, tests); 0 fits the grid to the window.
+GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell = 0);
+
+// The window size that shows n x n cells of `cell` pixels beside the side panel.
+std::pair<int, int> window_size_for_cells(int grid_size, int cell);
+
+}  // namespace app

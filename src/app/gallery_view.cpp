@@ -1,0 +1,783 @@
+#include "app/gallery_view.hpp"
+
+#include <epoxy/gl.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include "sps/plane_search.hpp"
+
+namespace app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+ImTextureID texture_id(GLuint texture) {
+  return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture));
+}
+
+void disable_blending(const ImDrawList* /*list*/, const ImDrawCmd* /*cmd*/) {
+  glDisable(GL_BLEND);
+}
+
+constexpr render::ViewPreset kPresets[] = {render::ViewPreset::kFront, render::ViewPreset::kSide,
+                                           render::ViewPreset::kThreeQuarter};
+
+// The desktop's own save dialog, if one is installed: zenity (GNOME) or kdialog (KDE).
+std::string find_program(const char* name) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return "";
+  std::string dirs = path;
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
+    if (end > start && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    start = end + 1;
+  }
+  return "";
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char ch : s) {
+    if (ch == '\'') {
+      q += "'\\''";
+    } else {
+      q += ch;
+    }
+  }
+  return q + "'";
+}
+
+std::optional<std::string> run_dialog(const std::string& command) {
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return std::nullopt;
+  std::string out;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  const int status = ::pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  if (status != 0 || out.empty()) return std::nullopt;  // cancelled
+  return out;
+}
+
+}  // namespace
+
+GalleryView::GalleryView(ViewOptions options, UiPrefs prefs)
+    : options_(std::move(options)), prefs_(std::move(prefs)) {
+  set_preset(std::clamp(prefs_.view_preset, 0, 2));
+  save_path_ = options_.save_path;
+  if (save_path_.empty() && !prefs_.save_name.empty()) {
+    save_path_ = (fs::path(prefs_.save_folder) / prefs_.save_name).string();
+  }
+}
+
+GalleryView::~GalleryView() = default;
+
+void GalleryView::release_gl() {
+  cells_.clear();
+  history_.clear();
+  best_ = CellView{};
+  start_ = CellView{};
+  inspect_ = CellView{};
+}
+
+std::string GalleryView::cell_label(int index, int n) {
+  if (n == 3) return std::to_string(index + 1);
+  if (index >= 0 && index < 26) return std::string(1, static_cast<char>('A' + index));
+  return std::to_string(index + 1);
+}
+
+bool GalleryView::text_input_active() const {
+  return ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantTextInput;
+}
+
+void GalleryView::set_preset(int index) {
+  camera_.set_preset(kPresets[index]);
+  active_preset_ = index;
+  prefs_.view_preset = index;
+  ++camera_version_;
+}
+
+void GalleryView::sync_space(GalleryController& c) {
+  if (c.space_generation() == space_generation_) return;
+  // Contents belong to the space that made them. This runs before the UI frame, so no texture
+  // the UI has queued is freed here.
+  release_gl();
+  hover_details_.reset();
+  space_generation_ = c.space_generation();
+  const SpaceSettings s = c.space().settings();
+  open_kind_ = s.kind;
+  open_source_ = s.source;
+  open_dims_ = s.dimensions;
+  open_grid_ = c.session().settings().grid_size;
+  open_zoom_ = c.session().settings().zoom_levels;
+  const std::string ext = fs::path(c.space().default_export_name()).extension().string();
+  if (save_path_.empty() || fs::path(save_path_).extension() != ext) {
+    const fs::path folder = prefs_.save_folder.empty() ? fs::path() : fs::path(prefs_.save_folder);
+    save_path_ = (folder / c.space().default_export_name()).string();
+  }
+}
+
+void GalleryView::update_cells(GalleryController& c, float width, float height, float dpi) {
+  sync_space(c);
+  DesignSpace& space = c.space();
+  const int n = c.session().settings().grid_size;
+  layout_ = compute_layout(width, height, n, options_.cell_size);
+  dpi = std::max(1.0f, dpi);
+  dpi_ = dpi;
+  cell_pixels_ = static_cast<int>(std::lround(dpi * layout_.cell));
+  // Previews: two side by side in the side panel, at most 260 wide, in the space's aspect.
+  const float aspect = std::max(0.2f, space.preview_aspect());
+  float pw = std::min(260.0f, (layout_.side.w - 3 * kLayoutGap) / 2.0f);
+  float ph = pw / aspect;
+  const float max_h = std::max(80.0f, layout_.side.h * 0.42f);
+  if (ph > max_h) {
+    ph = max_h;
+    pw = ph * aspect;
+  }
+  preview_w_ = static_cast<int>(pw);
+  preview_h_ = static_cast<int>(ph);
+
+  const auto& points = c.displayed_cells();
+  if (cells_.size() != points.size()) cells_.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    cells_[i].set_point(space, points[i].x, false);
+    cells_[i].clamped = points[i].clamped;
+  }
+  const Session& s = c.session();
+  if (slider_x_ && slider_x_->size() != space.dimensions()) slider_x_.reset();
+  best_.set_point(space, slider_x_ ? *slider_x_ : s.current_best(), true);
+  start_.set_point(space, s.start_point(), true);
+  if (c.inspected() >= 0) {
+    inspect_.set_point(space, s.history()[static_cast<std::size_t>(c.inspected())].chosen, true);
+  }
+  if (history_.size() != s.history().size()) history_.resize(s.history().size());
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    history_[i].set_point(space, s.history()[i].chosen, false);
+  }
+}
+
+void GalleryView::draw_cells(const GalleryController& c) {
+  const DesignSpace& space = c.space();
+  const float dpi = dpi_;
+  const float pw = static_cast<float>(preview_w_), ph = static_cast<float>(preview_h_);
+  const float aspect = std::max(0.2f, space.preview_aspect());
+  CellLook look;
+  look.camera = space.uses_camera() ? &camera_ : nullptr;
+  // While the grid moves, cells render without multisampling (a software rasterizer pays per
+  // sample); the settled grid is drawn again with full antialiasing.
+  const bool fast = c.animating() || camera_dragging_;
+  for (auto& cell : cells_) {
+    cell.draw(look, camera_version_, cell_pixels_, cell_pixels_, options_.samples, fast,
+              options_.animation_scale, options_.animation_samples > 0);
+  }
+  const int pwx = static_cast<int>(std::lround(dpi * pw));
+  const int phx = static_cast<int>(std::lround(dpi * ph));
+  (c.inspected() >= 0 ? inspect_ : best_).draw(look, camera_version_, pwx, phx, options_.samples);
+  CellLook muted = look;
+  muted.muted = true;
+  start_.draw(muted, camera_version_, pwx, phx, options_.samples);
+  const int tw = static_cast<int>(std::lround(dpi * 58.0f));
+  const int th = static_cast<int>(std::lround(dpi * 58.0f / aspect));
+  for (auto& h : history_) h.draw(look, camera_version_, tw, th, options_.samples);
+}
+
+void GalleryView::build(GalleryController& c, long frame) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(io.DisplaySize);
+  ImGui::Begin("Sequential Gallery", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                   ImGuiWindowFlags_NoBackground);  // glClear paints it, far cheaper
+  ImGui::SetCursorScreenPos(ImVec2(layout_.toolbar.x, layout_.toolbar.y));
+  draw_toolbar(c);
+  ImGui::SetCursorScreenPos(ImVec2(layout_.messages.x, layout_.messages.y + 3));
+  draw_messages(c);
+  ImGui::SetCursorScreenPos(ImVec2(layout_.grid.x, layout_.grid.y));
+  draw_grid(c, frame);
+  ImGui::SetCursorScreenPos(ImVec2(layout_.side.x, layout_.side.y));
+  ImGui::BeginChild("side", ImVec2(layout_.side.w, layout_.side.h), false);
+  draw_side_panel(c);
+  ImGui::EndChild();
+  draw_modals(c);
+  ImGui::End();
+  poll_desktop_dialog(c);
+}
+
+void GalleryView::draw_toolbar(GalleryController& c) {
+  ImGui::BeginDisabled(!c.can_undo_click());
+  if (ImGui::Button("Undo click")) c.queue(intent::UndoClick{});
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Take back the last click (Backspace / Ctrl+Z)");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!c.can_undo_plane());
+  if (ImGui::Button("Undo plane")) c.queue(intent::UndoPlane{});
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Go back to the start of the last finished plane");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!c.can_redo());
+  if (ImGui::Button("Redo")) c.queue(intent::Redo{});
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Redo what Undo took back (Ctrl+Y / Ctrl+Shift+Z)");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(c.busy() || !c.has_progress());
+  if (ImGui::Button("Start over")) confirm_start_over_ = true;
+  ImGui::EndDisabled();
+  if (c.space().uses_camera()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("|");
+    ImGui::SameLine();
+    ImGui::TextUnformatted("View:");
+    const char* labels[] = {"Front", "Side", "3/4"};
+    for (int i = 0; i < 3; ++i) {
+      ImGui::SameLine();
+      if (ImGui::RadioButton(labels[i], active_preset_ == i)) set_preset(i);
+    }
+  }
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  const auto& s = c.session().settings();
+  ImGui::Text("Plane %d   click %d of %d", c.session().planes_done() + 1,
+              std::min(c.session().clicks_on_plane() + (c.busy() ? 0 : 1), s.zoom_levels),
+              s.zoom_levels);
+}
+
+void GalleryView::draw_messages(const GalleryController& c) {
+  // A failing autosave stays on screen until a save works again: the user must know that
+  // clicks are not being kept.
+  if (!c.autosave_problem().empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1));
+    ImGui::Text("AUTOSAVE IS FAILING -- your clicks are not being saved: %s",
+                c.autosave_problem().c_str());
+    ImGui::PopStyleColor();
+    return;
+  }
+  const Message& m = c.message();
+  if (m.text.empty()) {
+    ImGui::TextDisabled("Click the cell you like best; each click zooms in around it.");
+    return;
+  }
+  const ImVec4 colour = m.kind == MessageKind::kError     ? ImVec4(1.0f, 0.45f, 0.4f, 1)
+                        : m.kind == MessageKind::kSuccess ? ImVec4(0.5f, 0.9f, 0.5f, 1)
+                                                          : ImVec4(0.85f, 0.85f, 0.9f, 1);
+  ImGui::PushStyleColor(ImGuiCol_Text, colour);
+  ImGui::TextUnformatted(m.text.c_str());
+  ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", m.text.c_str());
+}
+
+void GalleryView::draw_grid(GalleryController& c, long frame) {
+  const int n = c.session().settings().grid_size;
+  const float shown = layout_.cell;
+  const float gap = layout_.gap;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 origin(layout_.grid.x, layout_.grid.y);
+  const ImGuiIO& io = ImGui::GetIO();
+  hovered_ = -1;
+  const bool busy = c.busy();
+  // The second press of a double-click is never a zoom step of its own.
+  if (io.MouseClicked[0]) second_of_double_ = io.MouseDoubleClicked[0];
+  camera_dragging_ = false;
+  for (int row = 0; row < n; ++row) {
+    for (int col = 0; col < n; ++col) {
+      const int index = row * n + col;
+      const ImVec2 p0(origin.x + static_cast<float>(col) * (shown + gap),
+                      origin.y + static_cast<float>(row) * (shown + gap));
+      const ImVec2 p1(p0.x + shown, p0.y + shown);
+      ImGui::SetCursorScreenPos(p0);
+      ImGui::PushID(index);
+      const bool pressed = ImGui::InvisibleButton("cell", ImVec2(shown, shown));
+      const bool hovered = ImGui::IsItemHovered();
+      const bool dragging = ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left);
+      ImGui::PopID();
+      if (dragging) camera_dragging_ = true;
+      if (dragging && c.space().uses_camera() &&
+          (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+        camera_.orbit(io.MouseDelta.x, io.MouseDelta.y);
+        active_preset_ = -1;  // a free orbit
+        ++camera_version_;
+      }
+      const float drag_threshold = io.MouseDragThreshold * io.MouseDragThreshold;
+      if (pressed && io.MouseDragMaxDistanceSqr[0] < drag_threshold) {
+        if (second_of_double_) {
+          second_of_double_ = false;
+        } else {
+          c.queue(intent::ClickCell{col, row});
+        }
+      }
+      if (options_.report_layout && frame == 3) {
+        std::cout << "[layout] cell " << index + 1 << " " << p0.x << " " << p0.y << " " << shown
+                  << std::endl;
+      }
+      if (static_cast<std::size_t>(index) < cells_.size()) {
+        const CellView& view = cells_[static_cast<std::size_t>(index)];
+        if (view.fbo.texture() != 0) {
+          const auto uv = view.uv();
+          // Cells are opaque: drawing them without blending saves a software rasterizer
+          // reading back every cell's pixels every frame.
+          dl->AddCallback(&disable_blending, nullptr);
+          dl->AddImage(texture_id(view.fbo.texture()), p0, p1, ImVec2(uv[0], uv[1]),
+                       ImVec2(uv[2], uv[3]));
+          dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+        }
+      }
+      if (hovered && !busy) {
+        hovered_ = index;
+        dl->AddRectFilled(p0, p1, IM_COL32(255, 255, 255, 22));
+        dl->AddRect(p0, p1, IM_COL32(255, 190, 60, 255), 0.0f, 0, 4.0f);
+      } else {
+        dl->AddRect(p0, p1, IM_COL32(40, 40, 48, 255), 0.0f, 0, 1.0f);
+      }
+      const std::string label = cell_label(index, n);
+      const ImVec2 ls = ImGui::CalcTextSize(label.c_str());
+      dl->AddRectFilled(ImVec2(p0.x + 4, p0.y + 4), ImVec2(p0.x + 12 + ls.x, p0.y + 6 + ls.y),
+                        IM_COL32(20, 22, 28, 150), 3.0f);
+      dl->AddText(ImVec2(p0.x + 8, p0.y + 5), IM_COL32(240, 240, 245, 255), label.c_str());
+      if (static_cast<std::size_t>(index) < cells_.size() &&
+          cells_[static_cast<std::size_t>(index)].clamped && shown >= 90.0f) {
+        const char* edge = "edge of the range";
+        const ImVec2 es = ImGui::CalcTextSize(edge);
+        dl->AddRectFilled(ImVec2(p0.x + 4, p1.y - 8 - es.y), ImVec2(p0.x + 12 + es.x, p1.y - 4),
+                          IM_COL32(20, 22, 28, 150), 3.0f);
+        dl->AddText(ImVec2(p0.x + 8, p1.y - 6 - es.y), IM_COL32(255, 180, 90, 255), edge);
+      }
+    }
+  }
+  const float total = static_cast<float>(n) * shown + static_cast<float>(n - 1) * gap;
+  ImGui::SetCursorScreenPos(origin);
+  ImGui::Dummy(ImVec2(total, total));
+  if (busy) {
+    const ImVec2 m(origin.x + total * 0.5f, origin.y + total * 0.5f);
+    dl->AddRectFilled(ImVec2(m.x - 170, m.y - 46), ImVec2(m.x + 170, m.y + 46),
+                      IM_COL32(20, 22, 28, 200), 8.0f);
+    const float t = static_cast<float>(ImGui::GetTime()) * 6.0f;
+    dl->PathArcTo(ImVec2(m.x - 130, m.y), 18.0f, t, t + 4.2f, 32);
+    dl->PathStroke(IM_COL32(80, 160, 255, 255), 0, 4.5f);
+    dl->AddText(ImVec2(m.x - 100, m.y - 8), IM_COL32(235, 235, 240, 255),
+                "Computing the next plane...");
+  }
+  if (hovered_ >= 0 && !c.animating() && !busy) draw_hover_tooltip(c);
+}
+
+void GalleryView::draw_hover_tooltip(const GalleryController& c) {
+  const auto& points = c.displayed_cells();
+  if (hovered_ >= static_cast<int>(points.size()) || !best_.prepared) return;
+  const Eigen::VectorXd& x = points[static_cast<std::size_t>(hovered_)].x;
+  if (!hover_details_ || hover_details_->x.size() != x.size() ||
+      (hover_details_->x - x).cwiseAbs().maxCoeff() > 1e-12) {
+    hover_details_ = c.space().prepare(x, true);
+  }
+  ImGui::BeginTooltip();
+  ImGui::Text("Cell %s", cell_label(hovered_, c.session().settings().grid_size).c_str());
+  c.space().draw_inspector(*hover_details_, "this cell", best_.prepared.get(), "current best");
+  if (points[static_cast<std::size_t>(hovered_)].clamped) {
+    ImGui::TextDisabled("Some values of this cell are at the edge of their range.");
+  }
+  ImGui::EndTooltip();
+}
+
+void GalleryView::draw_side_panel(GalleryController& c) {
+  const bool inspecting = c.inspected() >= 0;
+  const CellView& shown = inspecting ? inspect_ : best_;
+  char title[64];
+  if (inspecting) {
+    std::snprintf(title, sizeof title, "Plane %d choice", c.inspected() + 1);
+  } else if (slider_x_) {
+    std::snprintf(title, sizeof title, "Sliders (not chosen yet)");
+  } else {
+    std::snprintf(title, sizeof title, "Current best");
+  }
+  const ImVec2 size(static_cast<float>(preview_w_), static_cast<float>(preview_h_));
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted(title);
+  if (shown.fbo.texture() != 0) {
+    ImGui::Image(texture_id(shown.fbo.texture()), size, ImVec2(0, 1), ImVec2(1, 0));
+  } else {
+    ImGui::Dummy(size);
+  }
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextUnformatted("Started from");
+  if (start_.fbo.texture() != 0) {
+    ImGui::Image(texture_id(start_.fbo.texture()), size, ImVec2(0, 1), ImVec2(1, 0));
+  } else {
+    ImGui::Dummy(size);
+  }
+  ImGui::EndGroup();
+  if (inspecting && ImGui::Button("Back to current best")) c.queue(intent::Inspect{-1});
+  if (shown.prepared && start_.prepared) {
+    c.space().draw_inspector(*shown.prepared, inspecting ? "chosen" : "current",
+                             start_.prepared.get(), "start");
+  }
+  draw_sliders(c);
+  draw_history(c);
+  draw_save(c);
+  draw_open(c);
+  ImGui::Separator();
+  ImGui::TextDisabled("Design space: %s", c.space().description().c_str());
+  ImGui::TextDisabled("Session: %s%s", c.session_path().string().c_str(),
+                      c.autosave_enabled() ? "" : " (autosave OFF)");
+  ImGui::TextDisabled("Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save",
+                      c.session().settings().grid_size == 3 ? "1-9" : "A-Y");
+  if (c.space().uses_camera()) ImGui::TextDisabled("Drag a cell to orbit all bodies");
+}
+
+// The paper's user-study request: direct control for experts. The sliders start at the
+// current best; the preview follows them; "Use this" submits the point as preferred over the
+// previous best (it becomes the current best).
+void GalleryView::draw_sliders(GalleryController& c) {
+  if (!ImGui::CollapsingHeader("Expert sliders")) {
+    sliders_panel_ = false;
+    return;
+  }
+  sliders_panel_ = true;
+  const Eigen::VectorXd best = c.session().current_best();
+  Eigen::VectorXd x = slider_x_ ? *slider_x_ : best;
+  bool changed = false;
+  const float label_width = std::min(220.0f, ImGui::GetContentRegionAvail().x * 0.45f);
+  for (int i = 0; i < c.space().dimensions(); ++i) {
+    ImGui::PushID(i);
+    float v = static_cast<float>(x[i]);
+    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - label_width));
+    if (ImGui::SliderFloat(c.space().dimension_name(i).c_str(), &v, 0.0f, 1.0f, "%.3f")) {
+      x[i] = std::clamp(static_cast<double>(v), 0.0, 1.0);
+      changed = true;
+    }
+    ImGui::PopID();
+  }
+  if (changed) slider_x_ = x;
+  ImGui::BeginDisabled(!slider_x_ || c.busy());
+  if (ImGui::Button("Use this")) {
+    c.queue(intent::UsePoint{*slider_x_});
+    slider_x_.reset();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Back to the current best")) slider_x_.reset();
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Discard the slider changes");
+  }
+}
+
+void GalleryView::draw_history(GalleryController& c) {
+  ImGui::SetNextItemOpen(prefs_.history_panel, ImGuiCond_Once);
+  prefs_.history_panel = ImGui::CollapsingHeader("History");
+  if (!prefs_.history_panel) return;
+  ImGui::Text("%d finished plane%s (click one to inspect it)", c.session().planes_done(),
+              c.session().planes_done() == 1 ? "" : "s");
+  const float aspect = std::max(0.2f, c.space().preview_aspect());
+  const ImVec2 thumb(58.0f, 58.0f / aspect);
+  ImGui::BeginChild("history", ImVec2(0, thumb.y + 40), true, ImGuiWindowFlags_HorizontalScrollbar);
+  for (std::size_t i = 0; i < history_.size(); ++i) {
+    if (i > 0) ImGui::SameLine();
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::BeginGroup();
+    const bool selected = c.inspected() == static_cast<int>(i);
+    if (selected) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(255, 170, 40, 255));
+    if (ImGui::ImageButton(texture_id(history_[i].fbo.texture()), thumb, ImVec2(0, 1), ImVec2(1, 0),
+                           2)) {
+      c.queue(intent::Inspect{selected ? -1 : static_cast<int>(i)});
+    }
+    if (selected) ImGui::PopStyleColor();
+    ImGui::Text("#%zu", i + 1);
+    ImGui::EndGroup();
+    ImGui::PopID();
+  }
+  if (history_.empty()) ImGui::TextDisabled("the choice of every finished plane appears here");
+  ImGui::EndChild();
+}
+
+void GalleryView::draw_save(GalleryController& c) {
+  ImGui::SetNextItemOpen(prefs_.save_panel, ImGuiCond_Once);
+  prefs_.save_panel = ImGui::CollapsingHeader("Save##panel");
+  if (!prefs_.save_panel) return;
+  ImGui::TextWrapped("Save the shown %s (%s)", c.inspected() >= 0 ? "choice" : "current best",
+                     c.space().export_hint().c_str());
+  ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 150.0f));
+  ImGui::InputText("##savepath", &save_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save##quick")) quick_save(c);
+  ImGui::SameLine();
+  if (ImGui::Button("Save as...")) open_save_dialog(c);
+}
+
+void GalleryView::draw_open(GalleryController& c) {
+  ImGui::SetNextItemOpen(prefs_.open_panel, ImGuiCond_Once);
+  prefs_.open_panel = ImGui::CollapsingHeader("New search: another model, image or grid");
+  if (!prefs_.open_panel) return;
+  ImGui::TextUnformatted("Design:");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("body shape", open_kind_ == "body")) {
+    if (open_kind_ != "body") open_source_.clear(), open_dims_ = 10, open_grid_ = 3;
+    open_kind_ = "body";
+  }
+  ImGui::SameLine();
+  if (ImGui::RadioButton("photo colours", open_kind_ == "photo")) {
+    if (open_kind_ != "photo") open_source_.clear(), open_dims_ = 12, open_grid_ = 5;
+    open_kind_ = "photo";
+  }
+  ImGui::TextUnformatted(open_kind_ == "body"
+                             ? "Body model (.npz; empty = built-in; or drop a file here)"
+                             : "Photo (.png/.jpg; empty = built-in; or drop a file here)");
+  ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 8.0f));
+  ImGui::InputText("##source", &open_source_);
+  if (open_kind_ == "body") {
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputInt("components", &open_dims_);
+    open_dims_ = std::clamp(open_dims_, 1, sps::kMaxSearchDims);
+  }
+  ImGui::TextUnformatted("Grid");
+  ImGui::SameLine();
+  ImGui::RadioButton("3x3", &open_grid_, 3);
+  ImGui::SameLine();
+  ImGui::RadioButton("5x5", &open_grid_, 5);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(100);
+  ImGui::InputInt("clicks/plane", &open_zoom_);
+  open_zoom_ = std::clamp(open_zoom_, 1, 8);
+  ImGui::BeginDisabled(c.busy());
+  if (ImGui::Button("Open / apply (starts a new search)")) {
+    intent::Open o{SpaceSettings{open_kind_, open_source_, open_kind_ == "body" ? open_dims_ : 12},
+                   open_grid_, open_zoom_};
+    if (c.has_progress()) {
+      confirm_open_ = o;  // ask first: a search is work
+    } else {
+      c.queue(o);
+    }
+  }
+  ImGui::EndDisabled();
+}
+
+void GalleryView::draw_modals(GalleryController& c) {
+  if (c.resume_candidate() != nullptr) {
+    if (!ImGui::IsPopupOpen("Resume session?")) ImGui::OpenPopup("Resume session?");
+    if (ImGui::BeginPopupModal("Resume session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("A previous session was found: %s", c.session_path().string().c_str());
+      ImGui::TextUnformatted(c.resume_description().c_str());
+      if (ImGui::Button("Resume", ImVec2(140, 0))) {
+        c.queue(intent::Resume{});
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::SameLine();
+      if (ImGui::Button("Start new", ImVec2(140, 0))) {
+        c.queue(intent::StartNew{});
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+    return;
+  }
+  if (confirm_start_over_) {
+    if (!ImGui::IsPopupOpen("Start over?")) ImGui::OpenPopup("Start over?");
+    if (ImGui::BeginPopupModal("Start over?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("Discard all preference data and the history? (Redo brings them back.)");
+      if (ImGui::Button("Start over", ImVec2(140, 0))) {
+        c.queue(intent::StartOver{});
+        confirm_start_over_ = false;
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel", ImVec2(140, 0))) {
+        confirm_start_over_ = false;
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+  }
+  if (confirm_open_) {
+    if (!ImGui::IsPopupOpen("Start a new search?")) ImGui::OpenPopup("Start a new search?");
+    if (ImGui::BeginPopupModal("Start a new search?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("The current search has %d finished plane(s) and %d click(s).",
+                  c.session().planes_done(), c.session().clicks_on_plane());
+      ImGui::Text("A new search replaces it; its session file is kept as %s.previous.",
+                  c.session_path().filename().string().c_str());
+      if (ImGui::Button("Start the new search", ImVec2(200, 0))) {
+        c.queue(*confirm_open_);
+        confirm_open_.reset();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::SameLine();
+      if (ImGui::Button("Keep searching", ImVec2(160, 0))) {
+        confirm_open_.reset();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+  }
+  if (confirm_overwrite_) {
+    if (!ImGui::IsPopupOpen("Replace file?")) ImGui::OpenPopup("Replace file?");
+    if (ImGui::BeginPopupModal("Replace file?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("%s already exists.", confirm_overwrite_->string().c_str());
+      if (ImGui::Button("Replace it", ImVec2(140, 0))) {
+        c.queue(intent::Export{*confirm_overwrite_});
+        confirm_overwrite_.reset();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel", ImVec2(140, 0))) {
+        confirm_overwrite_.reset();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+  }
+  if (browser_open_) draw_file_browser();
+  if (browser_result_) {
+    const fs::path chosen = *browser_result_;
+    browser_result_.reset();
+    request_export(c, chosen);
+  }
+}
+
+void GalleryView::draw_file_browser() {
+  if (!ImGui::IsPopupOpen("Save as")) ImGui::OpenPopup("Save as");
+  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal("Save as", nullptr)) return;
+  ImGui::TextUnformatted("Folder:");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##dir", &browser_dir_);
+  ImGui::BeginChild("entries", ImVec2(0, -ImGui::GetFrameHeightWithSpacing() * 2.2f), true);
+  std::error_code ec;
+  const fs::path dir = browser_dir_.empty() ? fs::current_path(ec) : fs::path(browser_dir_);
+  if (dir.has_parent_path() && dir != dir.root_path() && ImGui::Selectable("../")) {
+    browser_dir_ = dir.parent_path().string();
+  }
+  std::vector<fs::directory_entry> entries;
+  for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().rfind('.', 0) != 0) entries.push_back(*it);
+  }
+  std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    std::error_code e1, e2;
+    const bool da = a.is_directory(e1), db = b.is_directory(e2);
+    return da != db ? da : a.path().filename() < b.path().filename();
+  });
+  if (ec) ImGui::TextDisabled("cannot list %s: %s", dir.string().c_str(), ec.message().c_str());
+  for (const auto& e : entries) {
+    std::error_code e1;
+    const bool is_dir = e.is_directory(e1);
+    const std::string name = e.path().filename().string() + (is_dir ? "/" : "");
+    if (ImGui::Selectable(name.c_str())) {
+      if (is_dir) {
+        browser_dir_ = e.path().string();
+      } else {
+        browser_name_ = e.path().filename().string();
+      }
+    }
+  }
+  ImGui::EndChild();
+  ImGui::TextUnformatted("File name:");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##name", &browser_name_);
+  if (ImGui::Button("Save", ImVec2(120, 0)) && !browser_name_.empty()) {
+    browser_result_ = dir / browser_name_;
+    browser_open_ = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel", ImVec2(120, 0))) {
+    browser_open_ = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+void GalleryView::open_save_dialog(GalleryController& c) {
+  if (desktop_dialog_.valid()) return;  // one is open already
+  const fs::path current =
+      save_path_.empty() ? fs::path(c.space().default_export_name()) : fs::path(save_path_);
+  std::error_code ec;
+  const fs::path folder = current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
+  if (options_.file_dialog != "builtin") {
+    std::string command;
+    if (const std::string zenity = find_program("zenity"); !zenity.empty()) {
+      command = shell_quote(zenity) + " --file-selection --save --title='Save' --filename=" +
+                shell_quote((folder / current.filename()).string()) + " 2>/dev/null";
+    } else if (const std::string kdialog = find_program("kdialog"); !kdialog.empty()) {
+      command = shell_quote(kdialog) + " --getsavefilename " +
+                shell_quote((folder / current.filename()).string()) + " 2>/dev/null";
+    }
+    if (!command.empty()) {
+      desktop_dialog_ = std::async(std::launch::async, [command] { return run_dialog(command); });
+      return;
+    }
+  }
+  browser_dir_ = fs::absolute(folder, ec).string();
+  browser_name_ = current.filename().string();
+  browser_open_ = true;
+}
+
+void GalleryView::poll_desktop_dialog(GalleryController& c) {
+  if (!desktop_dialog_.valid() ||
+      desktop_dialog_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+    return;
+  }
+  if (const auto path = desktop_dialog_.get()) request_export(c, *path);
+}
+
+void GalleryView::request_export(GalleryController& c, const fs::path& path) {
+  save_path_ = path.string();
+  std::error_code ec;
+  prefs_.save_folder = fs::absolute(path, ec).parent_path().string();
+  prefs_.save_name = path.filename().string();
+  // Ask before replacing a file, except the one this session just saved (saving again).
+  if (fs::exists(path, ec) && fs::absolute(path, ec) != fs::absolute(c.last_export(), ec)) {
+    confirm_overwrite_ = path;
+    std::cout << "[gallery] asking before replacing " << path.string() << std::endl;
+    return;
+  }
+  c.queue(intent::Export{path});
+}
+
+void GalleryView::quick_save(GalleryController& c) {
+  if (save_path_.empty()) {
+    open_save_dialog(c);
+    return;
+  }
+  request_export(c, save_path_);
+}
+
+void GalleryView::open_dropped(GalleryController& c, const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  const bool image = ext == ".png" || ext == ".PNG" || ext == ".jpg" || ext == ".jpeg" ||
+                     ext == ".JPG" || ext == ".JPEG";
+  open_kind_ = image ? "photo" : "body";
+  open_source_ = path;
+  if (image) open_dims_ = 12;
+  prefs_.open_panel = true;
+  intent::Open o{SpaceSettings{open_kind_, open_source_, image ? 12 : open_dims_}, image ? 5 : 3,
+                 open_zoom_};
+  if (c.has_progress()) {
+    confirm_open_ = o;
+  } else {
+    c.queue(o);
+  }
+}
+
+void GalleryView::press_cell(GalleryController& c, int index) {
+  const int n = c.session().settings().grid_size;
+  if (index < 0 || index >= n * n) return;
+  c.queue(intent::ClickCell{index % n, index / n});
+}
+
+}  // namespace app

@@ -1,0 +1,130 @@
+// `render-grid`: the first plane's grid of a new search, headless (EGL surfaceless), drawn by
+// the same cell code as the window (app::CellView and the design space's cell content).
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <string>
+
+#include "app/cell_view.hpp"
+#include "app/session.hpp"
+#include "cli/arg_parser.hpp"
+#include "cli/command_registry.hpp"
+#include "render/headless_context.hpp"
+#include "render/png_writer.hpp"
+#include "spaces/space_factory.hpp"
+
+namespace {
+
+const char* const kUsage =
+    "usage: sequential-gallery render-grid [--space body|photo] [--model FILE.npz|--image FILE]\n"
+    "                                      [--grid 3|5] [--seed S] [--components K]\n"
+    "                                      [--cell PX] [--samples N]\n"
+    "                                      [--cells-dir DIR] [--cells-csv FILE] -o GRID.png\n"
+    "Renders the grid of the first plane of a new search (seed S) as the window draws it.\n"
+    "--cells-dir also writes each cell as DIR/cell_<row>_<col>.png; --cells-csv writes each\n"
+    "cell's x (and, for bodies, its measurements in metres).\n";
+
+int run(int argc, char** argv) {
+  cli::ArgParser args(argc, argv, {"help"});
+  if (args.has("help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  args.reject_unknown({"help", "space", "model", "image", "grid", "seed", "components", "cell",
+                       "samples", "cells-dir", "cells-csv", "o", "output"});
+  const auto out = args.get("o") ? args.get("o") : args.get("output");
+  if (!out) throw cli::ArgError("render-grid: -o GRID.png is required\n" + std::string(kUsage));
+  app::SpaceSettings space_settings = spaces::default_settings(args.get_or("space", "body"));
+  if (space_settings.kind != "body" && space_settings.kind != "photo") {
+    throw cli::ArgError("render-grid: --space must be body or photo");
+  }
+  if (args.get("model") && space_settings.kind != "body") {
+    throw cli::ArgError("render-grid: --model is for --space body; photos take --image");
+  }
+  if (args.get("image") && space_settings.kind != "photo") {
+    throw cli::ArgError("render-grid: --image is for --space photo");
+  }
+  space_settings.source = args.get_or(space_settings.kind == "body" ? "model" : "image", "");
+  if (space_settings.kind == "body") space_settings.dimensions = args.get_int("components", 10);
+  const int cell = args.get_int("cell", 256);
+  if (cell < 32 || cell > 2048) throw cli::ArgError("render-grid: --cell must be 32..2048");
+  const int samples = args.get_int("samples", 4);
+  if (samples < 0 || samples > 16) throw cli::ArgError("render-grid: --samples must be 0..16");
+
+  render::HeadlessContext context;
+  auto space = spaces::open_space(space_settings);
+  app::SessionSettings settings;
+  settings.space = space_settings.kind;
+  settings.model_path = space_settings.source;
+  settings.components = space->dimensions();
+  settings.grid_size = args.get_int("grid", space->default_grid_size());
+  if (settings.grid_size != 3 && settings.grid_size != 5) {
+    throw cli::ArgError("render-grid: --grid must be 3 or 5");
+  }
+  settings.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
+  const app::Session session(settings);
+  const auto points = session.cells();
+  const int n = settings.grid_size;
+
+  // The window's look: cells on its dark background with its 6-pixel gaps.
+  const int gap = 6;
+  const int size = n * cell + (n - 1) * gap;
+  std::vector<std::uint8_t> grid(static_cast<std::size_t>(size) * size * 4);
+  for (std::size_t i = 0; i < grid.size(); i += 4) {
+    grid[i] = 15, grid[i + 1] = 15, grid[i + 2] = 15, grid[i + 3] = 255;
+  }
+  render::Camera camera;  // front view, as the window starts
+  app::CellLook look;
+  look.camera = space->uses_camera() ? &camera : nullptr;
+  std::ofstream csv;
+  if (const auto path = args.get("cells-csv")) {
+    csv.open(*path);
+    if (!csv) throw std::runtime_error("cannot write " + *path);
+    csv << "row,col";
+    for (int d = 0; d < space->dimensions(); ++d) csv << ",x" << d + 1;
+  }
+  const auto cells_dir = args.get("cells-dir");
+  if (cells_dir) std::filesystem::create_directories(*cells_dir);
+  for (int row = 0; row < n; ++row) {
+    for (int col = 0; col < n; ++col) {
+      const auto& point = points[static_cast<std::size_t>(row * n + col)];
+      app::CellView view;
+      view.set_point(*space, point.x, csv.is_open());
+      view.draw(look, 0, cell, cell, samples);
+      const auto pixels = view.fbo.read_pixels();  // bottom row first
+      for (int y = 0; y < cell; ++y) {
+        const auto* src = &pixels[static_cast<std::size_t>(cell - 1 - y) * cell * 4];
+        auto* dst = &grid[(static_cast<std::size_t>(row * (cell + gap) + y) * size +
+                           static_cast<std::size_t>(col * (cell + gap))) *
+                          4];
+        std::copy(src, src + static_cast<std::size_t>(cell) * 4, dst);
+      }
+      if (cells_dir) {
+        render::write_png(std::filesystem::path(*cells_dir) /
+                              ("cell_" + std::to_string(row) + "_" + std::to_string(col) + ".png"),
+                          cell, cell, pixels);
+      }
+      if (csv.is_open()) {
+        const auto numbers = space->numbers(*view.prepared);
+        if (row == 0 && col == 0) {
+          for (const auto& [name, value] : numbers) csv << "," << name;
+          csv << "\n";
+        }
+        csv << row << "," << col << std::setprecision(9);
+        for (int d = 0; d < point.x.size(); ++d) csv << "," << point.x[d];
+        for (const auto& [name, value] : numbers) csv << "," << value;
+        csv << "\n";
+      }
+    }
+  }
+  render::write_png(*out, size, size, grid, false);
+  std::cout << "wrote " << *out << " (" << n << "x" << n << " cells of " << cell << " px, "
+            << space->description() << ", seed " << settings.seed << ", " << context.renderer()
+            << ")\n";
+  return 0;
+}
+
+const cli::CommandRegistration reg{
+    "render-grid", "render the first plane's grid to a PNG headless (no window)", &run};
+
+}  // namespace

@@ -1,0 +1,52 @@
+// Body shapes as a design space: x in [0,1]^K are a PCA body model's shape coefficients
+// (beta = 6x - 3, +-3 standard deviations, as in the paper). Cells are bodies drawn with one
+// shared orbit camera; the inspector shows height and girths; export writes glTF.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "app/design_space.hpp"
+#include "body/body_model.hpp"
+
+namespace render {
+class BodyRenderer;
+}
+
+namespace spaces {
+
+class BodySpace : public app::DesignSpace {
+ public:
+  // `source`: the .npz it came from ("" = the embedded default model).
+  BodySpace(body::Model model, std::string source);
+  ~BodySpace() override;
+  // Loads the model (components = settings.dimensions); throws body::ModelError.
+  static std::unique_ptr<BodySpace> open(const app::SpaceSettings& settings);
+
+  app::SpaceSettings settings() const override;
+  std::string description() const override;
+  std::string dimension_name(int i) const override;
+  int default_grid_size() const override { return 3; }
+  bool uses_camera() const override { return true; }
+  float preview_aspect() const override { return 260.0f / 320.0f; }  // an A-pose fits
+  std::shared_ptr<const app::PreparedCell> prepare(const Eigen::VectorXd& x,
+                                                   bool details) const override;
+  std::unique_ptr<app::CellContent> make_content() override;
+  void draw_inspector(const app::PreparedCell& shown, const char* shown_label,
+                      const app::PreparedCell* reference,
+                      const char* reference_label) const override;
+  std::vector<std::pair<std::string, double>> numbers(const app::PreparedCell& cell) const override;
+  std::string default_export_name() const override { return "body.glb"; }
+  std::string export_hint() const override { return ".glb or .gltf"; }
+  std::string export_point(const Eigen::VectorXd& x,
+                           const std::filesystem::path& path) const override;
+
+  const body::Model& model() const { return model_; }
+
+ private:
+  body::Model model_;
+  std::string source_;
+  std::shared_ptr<render::BodyRenderer> renderer_;  // made on the GL thread, shared by cells
+};
+
+}  // namespace spaces

@@ -1,0 +1,22 @@
+// Opens a design space by kind ("body", "photo"): what the gallery, render-grid and the tests
+// use instead of naming BodySpace or PhotoSpace.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/design_space.hpp"
+
+namespace spaces {
+
+// Throws std::runtime_error for an unknown kind, or the space's own error (file, format).
+std::unique_ptr<app::DesignSpace> open_space(const app::SpaceSettings& settings);
+
+// The kinds open_space() knows, for --help and the window's picker.
+const std::vector<std::string>& space_kinds();
+
+// What a new search in `kind` starts with: its dimension count (the body default 10).
+app::SpaceSettings default_settings(const std::string& kind);
+
+}  // namespace spaces

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# render-grid for the body and the photo space: the grid PNG and every cell PNG exist, every
+# cell shows something (not a flat colour) and no two cells are the same.
+set -euo pipefail
+APP=$1
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+check() {  # check SPACE N
+  local space=$1 n=$2
+  "$APP" render-grid --space "$space" --cell 96 --cells-dir "$T/$space" --cells-csv "$T/$space.csv" \
+    -o "$T/$space.png"
+  [[ -s "$T/$space.png" ]] || { echo "FAIL: no grid image for $space"; exit 1; }
+  for ((r = 0; r < n; ++r)); do
+    for ((c = 0; c < n; ++c)); do
+      f="$T/$space/cell_${r}_${c}.png"
+      [[ -s "$f" ]] || { echo "FAIL: missing $f"; exit 1; }
+      convert "$f" -depth 8 rgb:"$T/$space/cell_${r}_${c}.rgb"
+    done
+  done
+  [[ $(wc -l <"$T/$space.csv") -eq $((n * n + 1)) ]] || { echo "FAIL: $space.csv rows"; exit 1; }
+  /usr/bin/python3 - "$T/$space" "$n" <<'PYEOF'
+import sys, itertools
+import numpy as np
+folder, n = sys.argv[1], int(sys.argv[2])
+cells = {}
+for r in range(n):
+    for c in range(n):
+        a = np.fromfile(f"{folder}/cell_{r}_{c}.rgb", dtype=np.uint8).astype(np.int32)
+        assert a.size == 96 * 96 * 3, a.size
+        assert a.std() > 8, f"cell {r},{c} is flat (std {a.std():.1f})"
+        cells[(r, c)] = a
+worst = min(np.abs(cells[a] - cells[b]).mean() for a, b in itertools.combinations(cells, 2))
+print(f"{folder}: {len(cells)} cells, smallest mean pairwise difference {worst:.2f}")
+assert worst > 0.2, "two cells are identical"
+PYEOF
+}
+check body 3
+check photo 5
+echo PASS

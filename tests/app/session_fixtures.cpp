@@ -1,0 +1,96 @@
+#include "session_fixtures.hpp"
+
+#include <functional>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "app/session.hpp"
+
+namespace test_fixtures {
+
+using nlohmann::json;
+
+std::string good_session_json() {
+  app::SessionSettings settings;
+  settings.components = 4;
+  settings.seed = 11;
+  app::Session session(settings);
+  // The search with a small model window, restored from the session's own fresh state.
+  json search = json::parse(session.search().to_json());
+  search["options"]["model"]["max_points"] = 24;
+  sps::PlaneSearch current = sps::PlaneSearch::from_json(search.dump());
+  const std::vector<std::vector<sps::GridCell>> planes{{{0, 0}, {1, 1}, {2, 1}, {1, 0}},
+                                                       {{2, 2}, {0, 1}, {1, 1}, {2, 0}},
+                                                       {{1, 2}, {1, 1}, {0, 0}, {2, 2}}};
+  for (const auto& clicks : planes) {
+    for (const auto& c : clicks) session.click(c);
+    const app::Submission sub = session.submission();
+    current.submit(sub.chosen, sub.extra_comparisons);
+    session.finish_plane(current);
+  }
+  session.click({1, 1});
+  return session.to_json();
+}
+
+std::vector<SessionFixture> broken_session_fixtures() {
+  const json good = json::parse(good_session_json());
+  std::vector<SessionFixture> out;
+  const auto add = [&](const std::string& name, const std::string& expected,
+                       const std::function<void(json&)>& change) {
+    json j = good;
+    change(j);
+    out.push_back({name, j.dump(1), expected});
+  };
+  // Defect 1: a snapshot whose preferences point past its points, with more points than the
+  // model window (the window code indexed out of bounds).
+  add("history-preferences-past-points", "pointing past",
+      [](json& j) { j["search"]["history"][1]["points"] = 25; });
+  // Defect 2: absurd numbers that used to size allocations or overflow int conversions.
+  add("components-1e9", "components", [](json& j) { j["settings"]["components"] = 1000000000; });
+  add("components-1e300", "components", [](json& j) { j["settings"]["components"] = 1e300; });
+  add("dims-1e9", "dims", [](json& j) { j["search"]["options"]["dims"] = 1000000000; });
+  add("grid-1e300", "grid_size", [](json& j) { j["settings"]["grid_size"] = 1e300; });
+  add("max-points-huge", "max_points",
+      [](json& j) { j["search"]["options"]["model"]["max_points"] = 4000000000.0; });
+  add("threads-negative", "threads", [](json& j) { j["search"]["options"]["threads"] = -3; });
+  add("btl-scale-zero", "btl_scale",
+      [](json& j) { j["search"]["options"]["model"]["btl_scale"] = 0.0; });
+  add("preference-index-out-of-range", "preference index",
+      [](json& j) { j["search"]["preferences"][0]["chosen"] = 99999; });
+  add("preference-repeats-point", "repeats", [](json& j) {
+    j["search"]["preferences"][0]["others"][0] = j["search"]["preferences"][0]["chosen"];
+  });
+  // Defect 3: a history entry whose random-generator state cannot be restored by undo.
+  add("history-rng-unreadable", "random generator state is unreadable",
+      [](json& j) { j["search"]["history"][0]["rng"] = "not a generator state"; });
+  // Defect 4: a kernel amplitude that overflows every later value into NaN.
+  add("amplitude-1e300", "amplitude", [](json& j) { j["search"]["params"]["amplitude"] = 1e300; });
+  add("history-amplitude-1e300", "amplitude",
+      [](json& j) { j["search"]["history"][2]["params"]["amplitude"] = 1e300; });
+  add("latent-null", "non-number", [](json& j) { j["search"]["latent"][0] = nullptr; });
+  add("latent-wrong-length", "entries, expected",
+      [](json& j) { j["search"]["latent"].push_back(0.5); });
+  add("history-out-of-order", "out of order",
+      [](json& j) { std::swap(j["search"]["history"][0], j["search"]["history"][2]); });
+  add("plane-outside-box", "plane.c", [](json& j) { j["search"]["plane"]["c"][0] = 7.5; });
+  add("history-length-mismatch", "history length",
+      [](json& j) { j["history"].erase(j["history"].begin()); });
+  add("path-cell-outside-grid", "path", [](json& j) { j["path"][0] = json::array({7, 0}); });
+  // Undo of a finished plane whose stored path is empty popped an empty vector.
+  add("history-path-empty", "history path has 0 clicks",
+      [](json& j) { j["history"][1]["path"] = json::array(); });
+  add("history-path-too-long", "history path has 5 clicks", [](json& j) {
+    j["history"][0]["path"].push_back(json::array({1, 1}));
+  });
+  add("start-point-string", "start_point", [](json& j) { j["start_point"][0] = "half"; });
+  add("wrong-format", "not a sequential-gallery session",
+      [](json& j) { j["format"] = "something else"; });
+  const std::string text = good.dump(1);
+  out.push_back({"truncated", text.substr(0, text.size() / 2), "not valid JSON"});
+  out.push_back({"empty", "", "not valid JSON"});
+  out.push_back({"top-level-array", "[1, 2, 3]", "not a sequential-gallery session"});
+  return out;
+}
+
+}  // namespace test_fixtures

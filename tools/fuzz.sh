@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz/, clang with -fsanitize=fuzzer,address,undefined)
+# into build/fuzz and runs each for SECONDS (default 60), one at a time, from the committed
+# seed corpora (tests/fuzz/corpus/<target>/; new inputs go to build/fuzz/corpus/<target>/).
+# Prints executions and crashes per target; exits 1 if any target crashed (the input is kept
+# under build/fuzz/artifacts/ -- turn it into an ordinary regression test).
+#   tools/fuzz.sh [SECONDS] [TARGET...]
+#   tools/fuzz.sh --seeds BUILD_DIR   regenerate the committed seeds with BUILD_DIR's
+#                                     fuzz_corpus_writer (after changing the fixtures)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+
+if [ "${1:-}" = "--seeds" ]; then
+  writer="${2:-build}/tests/fuzz_corpus_writer"
+  [ -x "$writer" ] || { echo "fuzz: $writer not built (cmake --build build --target fuzz_corpus_writer)"; exit 1; }
+  rm -rf tests/fuzz/corpus && mkdir -p tests/fuzz/corpus && "$writer" tests/fuzz/corpus
+  exit $?
+fi
+
+seconds=${1:-60}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(npy npz_model session plane_search)
+
+if ! command -v clang++ >/dev/null || ! command -v clang >/dev/null; then
+  echo "fuzz: NOTICE: clang is not installed; the fuzz run is SKIPPED" \
+       "(bash tools/setup.sh --test installs clang and libclang-rt-14-dev)"
+  exit 0
+fi
+
+build=build/fuzz
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S tests/fuzz -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+      -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" >"$build.configure.log" 2>&1 ||
+  { cat "$build.configure.log"; echo "fuzz: configuring the fuzz targets failed"; exit 1; }
+cmake --build "$build" -j"$(nproc)" >"$build.build.log" 2>&1 ||
+  { tail -50 "$build.build.log"; echo "fuzz: building the fuzz targets failed"; exit 1; }
+
+mkdir -p "$build/artifacts"
+status=0
+summary=()
+for t in "${targets[@]}"; do
+  seeds="tests/fuzz/corpus/$t"
+  work="$build/corpus/$t"
+  mkdir -p "$work"
+  log="$build/$t.log"
+  stamp="$build/$t.started"
+  touch "$stamp"
+  echo "fuzz: $t for ${seconds}s (seeds: $(ls "$seeds" | wc -l) files in $seeds)"
+  # One process, one core; an input that needs over 2 GB or 30 s is a finding too.
+  ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+  UBSAN_OPTIONS=print_stacktrace=1 \
+    nice "$build/fuzz_$t" -max_total_time="$seconds" -print_final_stats=1 -timeout=30 \
+      -rss_limit_mb=2048 -malloc_limit_mb=2048 -artifact_prefix="$build/artifacts/$t-" \
+      "$work" "$seeds" >"$log" 2>&1
+  rc=$?
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  crashes=$(find "$build/artifacts" -name "$t-*" -newer "$stamp" | wc -l)
+  line="$t: ${execs:-?} executions in ${seconds}s, exit $rc, $crashes crash/timeout/oom input(s)"
+  summary+=("$line")
+  if [ $rc -ne 0 ]; then
+    status=1
+    echo "fuzz: FINDING in $t:"
+    grep -E "ERROR|SUMMARY|runtime error|abort|Test unit written" "$log" | head -20
+  fi
+done
+echo "fuzz summary:"
+printf '  %s\n' "${summary[@]}"
+exit $status
