@@ -1,43 +1,67 @@
 #!/usr/bin/env bash
-# Contact sheet of the default body model: the mean body and each of the first 5 shape
-# components at -3 and +3, front and side views, rendered with the project's headless
-# renderer (`sequential-gallery render`) and put together with ImageMagick's montage.
-# usage: tools/make_contact_sheet.sh [EXECUTABLE] [MODEL.npz] [OUT.png]
+# Contact sheets of the built-in body models: per model, the mean body and each of the first 10
+# shape components at -3 and +3, front and side views, labelled with the change in height and
+# mass (from `sequential-gallery measure`); and 1000 px close-ups of the mean body's head, hand
+# and knee. Rendered with the project's headless renderer (`sequential-gallery render`, EGL
+# surfaceless) and put together with ImageMagick's montage.
+# usage: tools/make_contact_sheet.sh [EXECUTABLE] [MODELS...]   (default: female male neutral)
+# writes docs/default-model-<model>.png and docs/default-model-<model>-closeup.png
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=${1:-./build/sequential-gallery}
-model=${2:-assets/default_body.npz}
-out=${3:-docs/default-model-contact-sheet.png}
+shift || true
+models=("$@")
+[ ${#models[@]} -eq 0 ] && models=(female male neutral)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-render() {  # name betas view label
-  "$exe" render --model "$model" --betas="$2" --view "$3" --size 260x420 -o "$tmp/$1-$3.png" \
-    >/dev/null
+measure() {  # model betas -> "height_m mass_kg"
+  "$exe" measure --model "$1" --betas="$2" |
+    awk '/^height/ {h = $2} /^mass/ {m = $2} END {print h, m}'
 }
 
-labels=()
-names=()
-add() {  # name betas label
-  render "$1" "$2" front
-  render "$1" "$2" side
-  names+=("$1")
-  labels+=("$3")
-}
-
-add mean "0" "mean"
-for k in 1 2 3 4 5; do
-  zeros=""
-  for ((i = 1; i < k; ++i)); do zeros+="0,"; done
-  add "c${k}m" "${zeros}-3" "component $k: -3"
-  add "c${k}p" "${zeros}3" "component $k: +3"
-done
-
-args=()
-for view in front side; do
-  for i in "${!names[@]}"; do
-    args+=(-label "${labels[$i]} ($view)" "$tmp/${names[$i]}-$view.png")
+for model in "${models[@]}"; do
+  read -r h0 m0 < <(measure "$model" 0)
+  args=()
+  cells=()  # betas label, in montage order (rows: front -3, front +3, side -3, side +3)
+  for view in front side; do
+    for sign in -3 3; do
+      for k in 0 1 2 3 4 5 6 7 8 9 10; do
+        name="$tmp/$model-$view-$k-$sign.png"
+        if [ "$k" -eq 0 ]; then
+          betas=0
+          label=$(printf 'mean (%s)\n%.2f m, %.1f kg' "$view" "$h0" "$m0")
+        else
+          zeros=""
+          for ((i = 1; i < k; ++i)); do zeros+="0,"; done
+          betas="${zeros}${sign}"
+          read -r h m < <(measure "$model" "$betas")
+          label=$(awk -v k="$k" -v s="$sign" -v v="$view" -v h="$h" -v h0="$h0" -v m="$m" \
+            -v m0="$m0" 'BEGIN {printf "c%d %+d (%s)\n%+.1f cm, %+.1f kg", k, s, v,
+                               100 * (h - h0), m - m0}')
+        fi
+        "$exe" render --model "$model" --betas="$betas" --view "$view" --size 200x330 \
+          -o "$name" >/dev/null
+        args+=(-label "$label" "$name")
+      done
+    done
   done
+  montage "${args[@]}" -tile 11x4 -geometry +3+3 -pointsize 13 -background white \
+    "docs/default-model-$model.png"
+  echo "wrote docs/default-model-$model.png"
+
+  # Close-ups of the mean body (its height decides where the head is).
+  head_y=$(awk -v h="$h0" 'BEGIN {print h - 0.11}')
+  "$exe" render --model "$model" --size 1000x1000 --target 0 "$head_y" 0.02 --distance 0.75 \
+    --yaw 30 --pitch 0 -o "$tmp/head.png" >/dev/null
+  hand_y=$(awk -v h="$h0" 'BEGIN {print 0.94 * h / 1.7}')
+  "$exe" render --model "$model" --size 1000x1000 --target 0.6 "$hand_y" 0.02 --distance 0.5 \
+    --yaw 75 --pitch 0 -o "$tmp/hand.png" >/dev/null
+  knee_y=$(awk -v h="$h0" 'BEGIN {print 0.48 * h / 1.7}')
+  "$exe" render --model "$model" --size 1000x1000 --target 0.0 "$knee_y" 0.0 --distance 1.1 \
+    --yaw 25 --pitch 0 -o "$tmp/knee.png" >/dev/null
+  montage -label "$model: head" "$tmp/head.png" -label "hand" "$tmp/hand.png" \
+    -label "knees" "$tmp/knee.png" -tile 3x1 -geometry 1000x1000+3+3 -pointsize 20 \
+    -background white "docs/default-model-$model-closeup.png"
+  echo "wrote docs/default-model-$model-closeup.png"
 done
-montage "${args[@]}" -tile "${#names[@]}x2" -geometry +4+4 -pointsize 14 -background white "$out"
-echo "wrote $out"

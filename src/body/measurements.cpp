@@ -16,6 +16,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "body/convex_hull.hpp"
 #include "body/mesh_slice.hpp"
 
@@ -33,10 +35,25 @@ double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double ax
   return best;
 }
 
+double enclosed_volume(const Vertices& vertices, const Faces& faces) {
+  double six_volume = 0.0;
+  const Eigen::Index V = vertices.rows();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (faces(f, 0) >= V || faces(f, 1) >= V || faces(f, 2) >= V) continue;
+    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
+    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
+    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
+    six_volume += a.dot(b.cross(c));
+  }
+  return std::abs(six_volume) / 6.0;
+}
+
 Measurements measure(const Model& model, const BodyMesh& mesh) {
   Measurements m;
   const Eigen::Index V = mesh.vertices.rows();
   if (V == 0) return m;
+  m.volume = enclosed_volume(mesh.vertices, model.faces);
+  m.mass = kBodyDensity * m.volume;
   const double ymin = mesh.vertices.col(1).minCoeff();
   const double ymax = mesh.vertices.col(1).maxCoeff();
   const double H = ymax - ymin;

@@ -1,4 +1,4 @@
-// Measurements a body designer reads: stature and tape-measure girths.
+// Measurements a body designer reads: stature, tape-measure girths, body volume and mass.
 #pragma once
 
 #include "body/body_model.hpp"
@@ -15,7 +15,21 @@ struct Measurements {
   double chest_height = 0.0;
   double waist_height = 0.0;
   double hips_height = 0.0;
+  // Enclosed volume (m^3, signed tetrahedra; its absolute value, so either winding works) and
+  // the body mass it implies at kBodyDensity (kg). Meaningful for closed meshes (the built-in
+  // models, SMPL); open meshes (holes at the neck of a head-less model...) read low.
+  double volume = 0.0;
+  double mass = 0.0;
 };
+
+// Whole-body density, kg/m^3. Densitometry of adults gives about 1.06-1.07 g/cm^3 for lean
+// tissue and 0.90 for fat; whole-body densities with the lungs' air included are close to
+// water: 985 kg/m^3 is the value of the project's domain notes (Anny uses 980). Brozek et al.
+// 1963 (Ann. N. Y. Acad. Sci. 110:113) and Siri 1961 give the tissue densities.
+constexpr double kBodyDensity = 985.0;
+
+// Volume enclosed by a closed triangle mesh (m^3): |sum over triangles of det(a, b, c) / 6|.
+double enclosed_volume(const Vertices& vertices, const Faces& faces);
 
 // Landmarks (see measurements.cpp for the sources): with H the stature and the body standing
 // in y, slices every H/200 through three bands of relative height,

@@ -9,8 +9,12 @@
 #include "util/utf8.hpp"
 
 #if defined(SG_HAVE_DEFAULT_MODEL)
-extern "C" const unsigned char sg_default_model_begin[];
-extern "C" const unsigned char sg_default_model_end[];
+extern "C" const unsigned char sg_model_female_begin[];
+extern "C" const unsigned char sg_model_female_end[];
+extern "C" const unsigned char sg_model_male_begin[];
+extern "C" const unsigned char sg_model_male_end[];
+extern "C" const unsigned char sg_model_neutral_begin[];
+extern "C" const unsigned char sg_model_neutral_end[];
 #endif
 
 namespace body {
@@ -258,10 +262,13 @@ void load_pose_correctives(Model& model) {
 }
 
 Model load_model(const std::filesystem::path& path, int components, int expressions) {
+  // A built-in model's name stands for that model unless a file of that name exists (sessions
+  // and the window store the --model text as a path).
+  if (is_builtin_model_name(path.string()) && !std::filesystem::exists(path))
+    return load_builtin_model(path.string(), components);
   const NpzArchive npz = NpzArchive::open_file(path);
   return load_from_archive(npz, components, path.stem().string(), expressions);
 }
-
 Model load_model_from_memory(const void* data, std::size_t size, const std::string& label,
                              int components, int expressions) {
   const NpzArchive npz = NpzArchive::open_memory(data, size, label);
@@ -270,19 +277,53 @@ Model load_model_from_memory(const void* data, std::size_t size, const std::stri
   return load_from_archive(npz, components, name, expressions);
 }
 
-Model load_default_model(int components) {
+const std::vector<std::string>& builtin_model_names() {
+  static const std::vector<std::string> names = {"female", "male", "neutral"};
+  return names;
+}
+
+bool is_builtin_model_name(const std::string& name) {
+  const auto& names = builtin_model_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+Model load_builtin_model(const std::string& name, int components) {
+  if (!is_builtin_model_name(name)) {
+    throw ModelError("'" + name + "' is not a built-in body model (built in: female, male, " +
+                     "neutral)");
+  }
 #if defined(SG_HAVE_DEFAULT_MODEL)
-  const std::size_t size = static_cast<std::size_t>(sg_default_model_end - sg_default_model_begin);
-  Model m =
-      load_model_from_memory(sg_default_model_begin, size, "<embedded default>", components, 0);
-  m.name = "default body";
+  const unsigned char* begin = sg_model_neutral_begin;
+  const unsigned char* end = sg_model_neutral_end;
+  if (name == "female") {
+    begin = sg_model_female_begin;
+    end = sg_model_female_end;
+  } else if (name == "male") {
+    begin = sg_model_male_begin;
+    end = sg_model_male_end;
+  }
+  Model m = load_model_from_memory(begin, static_cast<std::size_t>(end - begin),
+                                   "<embedded " + name + ">", components, 0);
+  m.name = name;
   return m;
 #else
   (void)components;
-  throw ModelError(
-      "<embedded default>: the default model was not built in (assets/default_body.npz did not "
-      "exist when the project was configured; generate it and re-run cmake, or pass --model)");
+  throw ModelError("<embedded " + name + ">: the default models were not built in (assets/body_" +
+                   name +
+                   ".npz did not exist when the project was configured; generate them with "
+                   "`sequential-gallery generate-default-model` and re-run cmake, or pass "
+                   "--model FILE)");
 #endif
+}
+
+Model resolve_model(const std::string& name_or_path, int components) {
+  if (name_or_path.empty()) return load_default_model(components);
+  if (is_builtin_model_name(name_or_path)) return load_builtin_model(name_or_path, components);
+  return load_model(name_or_path, components);
+}
+
+Model load_default_model(int components) {
+  return load_builtin_model("neutral", components);
 }
 
 }  // namespace body

@@ -4,15 +4,17 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "body/body_model.hpp"
 
 namespace body {
 
-// Loads and validates a model; keeps the first `components` shape components (all if the file
-// has fewer; 0 = all) and, for SMPL-X, the first `expressions` expression components (kept
-// apart from the shape components, see Model::expression_dirs). Throws ModelError naming the
-// file, the array and the problem.
+// Loads and validates a model; a built-in model's name (female, male, neutral) stands for that
+// model unless a file of that name exists. Keeps the first `components` shape components (all if
+// the file has fewer; 0 = all) and, for SMPL-X, the first `expressions` expression components
+// (kept apart from the shape components, see Model::expression_dirs). Throws ModelError naming
+// the file, the array and the problem.
 Model load_model(const std::filesystem::path& path, int components = 10, int expressions = 0);
 
 // The same from an in-memory .npz; `label` stands in for the file name in messages.
@@ -25,7 +27,18 @@ Model load_model_from_memory(const void* data, std::size_t size, const std::stri
 // them, or did not come from a file; throws ModelError if the array is malformed.
 void load_pose_correctives(Model& model);
 
-// The embedded default body model (assets/default_body.npz compiled into the binary).
+// The built-in body models (assets/body_{female,male,neutral}.npz compiled into the binary):
+// their names, in the order female, male, neutral.
+const std::vector<std::string>& builtin_model_names();
+bool is_builtin_model_name(const std::string& name);
+// Throws ModelError for an unknown name, or if the models were not built in.
+Model load_builtin_model(const std::string& name, int components = 10);
+
+// What a --model argument or a model picker chooses: "female", "male" or "neutral" (built in),
+// otherwise a file path; empty = the default (neutral).
+Model resolve_model(const std::string& name_or_path, int components = 10);
+
+// The default body model: the built-in neutral model.
 Model load_default_model(int components = 10);
 
 }  // namespace body

@@ -16,7 +16,8 @@ namespace {
 
 const char* const kUsage =
     "usage: sequential-gallery bench-gui [--clicks N] [--cell-size PX] [--grid 3|5]\n"
-    "                                    [--samples N] [--animation-samples N] [--model FILE]\n"
+    "                                    [--samples N] [--animation-samples N] [--model "
+    "female|male|neutral|FILE]\n"
     "                                    [--animation-scale F] [--breakdown]\n"
     "                                    [--space body|photo] [--image FILE]\n"
     "Opens the viewer, clicks N cells automatically (default 12, i.e. 3 planes), and prints\n"

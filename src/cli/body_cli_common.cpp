@@ -45,6 +45,7 @@ body::Model load_body_model(const ArgParser& args) {
   const int expressions = args.get_int("expressions", 0);
   if (expressions < 0) throw ArgError("--expressions must be >= 0");
   const auto path = args.get("model");
+  // female, male, neutral (built in) or a file; no --model = the built-in neutral model.
   const body::Model model = path ? body::load_model(*path, components, expressions)
                                  : body::load_default_model(components);
   // The loader keeps what the file has; asking for more is a mistake worth saying.

@@ -14,10 +14,10 @@ namespace cli {
 // it: the shared parser reads values until the next "--" option. The strings live in `store`.
 std::vector<char*> normalize_output_flag(int argc, char** argv, std::vector<std::string>& store);
 
-// --model FILE (else the embedded default model), keeping --components N (default 10, or
-// more if more betas/x values are given; 0 = all) shape components and --expressions N
-// (default 0; SMPL-X only). Asking for more components or expressions than the file has is an
-// ArgError.
+// --model female|male|neutral|FILE (else the built-in neutral model), keeping --components N
+// (default 10, or more if more betas/x values are given; 0 = all) shape components and
+// --expressions N (default 0; SMPL-X only). Asking for more components or expressions than the
+// file has is an ArgError.
 body::Model load_body_model(const ArgParser& args);
 
 // --components N larger than the model's component count is an error, not a silent clamp.

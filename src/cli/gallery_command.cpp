@@ -15,7 +15,7 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery [gallery] [options]\n"
     "  --space body|photo      what to design: body shapes (default) or a photo's colours\n"
-    "  --model FILE.npz        body model (default: the embedded default model)\n"
+    "  --model MODEL           female, male, neutral (built in; default neutral) or FILE.npz\n"
     "  --image FILE            photo to enhance, PNG or JPEG (default: a built-in picture)\n"
     "  --components K          shape components explored (default 10)\n"
     "  --grid 3|5              grid size (default 3 for bodies, 5 for photos)\n"

@@ -12,7 +12,7 @@ namespace {
 int run(int argc, char** argv) {
   const cli::ArgParser args(argc, argv, {});
   if (args.has("help")) {
-    std::cout << "usage: sequential-gallery inspect --model FILE.npz\n\n"
+    std::cout << "usage: sequential-gallery inspect --model female|male|neutral|FILE.npz\n\n"
                  "Lists the arrays in the file (dtype, shape, storage) and says whether it is a\n"
                  "usable SMPL-family model; exit code 0 if usable, 1 if not.\n";
     return 0;

@@ -27,7 +27,8 @@ int run(int argc_in, char** argv_in) {
   char** argv = argv_vec.data();
   const cli::ArgParser args(argc, argv, {}, {"betas", "x"});
   if (args.has("help")) {
-    std::cout << "usage: sequential-gallery measure [--model FILE.npz] [--components N]\n"
+    std::cout << "usage: sequential-gallery measure [--model female|male|neutral|FILE.npz] "
+                 "[--components N]\n"
                  "                                  [--betas B1 B2 ... | --x X1 X2 ...]\n\n"
                  "Prints height and chest, waist and hip circumferences (metres), measured\n"
                  "as the convex hull of horizontal slices, as a tape measure does.\n";
@@ -43,10 +44,12 @@ int run(int argc_in, char** argv_in) {
   line("chest", m.chest, m.chest_height);
   line("waist", m.waist, m.waist_height);
   line("hips", m.hips, m.hips_height);
+  std::printf("volume  %.4f m^3  (%.1f l)\n", m.volume, 1000.0 * m.volume);
+  std::printf("mass    %.1f kg  (volume x %.0f kg/m^3)\n", m.mass, body::kBodyDensity);
   return 0;
 }
 
-const cli::CommandRegistration reg{"measure", "print height and chest/waist/hip girths of a body",
-                                   &run};
+const cli::CommandRegistration reg{
+    "measure", "print height, chest/waist/hip girths, volume and mass of a body", &run};
 
 }  // namespace

@@ -1,5 +1,6 @@
 // `render`: one body to a PNG without any window (EGL surfaceless through Mesa), drawn exactly
 // as a grid cell of the viewer draws it.
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -15,23 +16,27 @@
 namespace {
 
 const char* const kUsage =
-    "usage: sequential-gallery render [--model FILE.npz] [--betas B1 B2 ...] -o OUT.png\n"
+    "usage: sequential-gallery render [--model female|male|neutral|FILE.npz] [--betas B1 B2 ...] "
+    "-o OUT.png\n"
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
     "                                 [--components K] [--samples N] [--rest-pose a|t]\n"
+    "                                 [--target X Y Z] [--distance M] [--yaw DEG] [--pitch DEG]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
-    "Without --model the embedded default body model is used; betas default to 0 (mean body).\n"
-    "--rest-pose t shows the body in the T-pose that `export --rest-pose t` writes.\n";
+    "Without --model the built-in neutral body model is used; betas default to 0 (mean body).\n"
+    "--rest-pose t shows the body in the T-pose that `export --rest-pose t` writes.\n"
+    "--target (metres, feet on y = 0), --distance, --yaw and --pitch move the camera from the\n"
+    "grid cell's framing, e.g. for close-ups of the head, a hand or a knee.\n";
 
 int run(int argc, char** argv_in) {
   std::vector<std::string> store;  // "-o" spelled "--output" so that --betas 1 -2 -o x.png works
   auto argv = cli::normalize_output_flag(argc, argv_in, store);
-  cli::ArgParser args(argc, argv.data(), {"help"}, {"betas"});
+  cli::ArgParser args(argc, argv.data(), {"help"}, {"betas", "target"});
   if (args.has("help")) {
     std::cout << kUsage;
     return 0;
   }
   args.reject_unknown({"help", "model", "betas", "o", "output", "size", "view", "components",
-                       "samples", "rest-pose"});
+                       "samples", "rest-pose", "target", "distance", "yaw", "pitch"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
   cli::require_output_file(*out);
@@ -51,11 +56,21 @@ int run(int argc, char** argv_in) {
                         "'");
   }
   camera.set_preset(*preset);
+  if (args.has("target")) {
+    const auto t = args.get_doubles("target");
+    if (t.size() != 3) throw cli::ArgError("render: --target needs three numbers X Y Z (metres)");
+    camera.target = glm::vec3(float(t[0]), float(t[1]), float(t[2]));
+  }
+  camera.distance = static_cast<float>(args.get_double("distance", camera.distance));
+  if (!(camera.distance > 0.05f && camera.distance < 100.0f))
+    throw cli::ArgError("render: --distance must be between 0.05 and 100 metres");
+  camera.yaw_degrees = static_cast<float>(args.get_double("yaw", camera.yaw_degrees));
+  camera.pitch_degrees = static_cast<float>(args.get_double("pitch", camera.pitch_degrees));
+  if (!(std::abs(camera.pitch_degrees) <= 89.0f))
+    throw cli::ArgError("render: --pitch must be within -89..89 degrees");
 
   const int components = args.get_int("components", 0);
-  const auto model_path = args.get("model");
-  body::Model model =
-      model_path ? body::load_model(*model_path, components) : body::load_default_model(components);
+  body::Model model = body::resolve_model(args.get_or("model", ""), components);
   cli::check_component_count(args, model);
   if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());

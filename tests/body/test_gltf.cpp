@@ -444,7 +444,10 @@ TEST_CASE("gltf: every bone points at its child (local +Y), leaves continue thei
     }
     INFO("rest pose " << (pose == body::RestPose::t ? "T" : "model") << ": worst bone-to-child "
                       << worst << " degrees");
-    CHECK(worst < 0.01);
+    // The matrices are float32: acos of a dot product within ~1e-7 of 1 reads up to ~0.03
+    // degrees, so the bound sits above that noise (0.01 failed on the built-in neutral model
+    // at 0.012).
+    CHECK(worst < 0.05);
     // The main chains: pelvis -> spine1, spine3 -> neck, left_elbow -> left_wrist.
     CHECK(model.joint_names[static_cast<std::size_t>(targets[0])] == "spine1");
     CHECK(model.joint_names[static_cast<std::size_t>(targets[9])] == "neck");

@@ -340,7 +340,7 @@ TEST_CASE("npz: list() shows every array with its header", "[loader]") {
 }
 
 TEST_CASE("loader: the embedded default model", "[loader]") {
-  // Either it is built in (assets/default_body.npz existed at configure time) and is a usable
+  // Either it is built in (assets/body_*.npz existed at configure time) and is a usable
   // body, or the error says it was not built in.
   body::Model m;
   try {
@@ -349,7 +349,8 @@ TEST_CASE("loader: the embedded default model", "[loader]") {
     CHECK_THAT(e.what(), Contains("not built in"));
     return;
   }
-  CHECK(m.source == "<embedded default>");
+  CHECK(m.source == "<embedded neutral>");
+  CHECK(m.name == "neutral");
   CHECK(m.joint_count() == 24);
   CHECK(m.joint_names.front() == "pelvis");
   CHECK(m.component_count() == std::min(10, m.total_components));

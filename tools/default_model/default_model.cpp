@@ -12,10 +12,43 @@
 
 namespace default_model {
 
-GeneratedModel generate_default_model(const GeneratorOptions& options) {
+namespace {
+
+struct Template {
+  TriMesh mesh;
+  Eigen::MatrixXd rig_weights;  // 4 influences, for glTF
+  Eigen::MatrixXd regressor;    // 24 x V
+  double joint_fit_error = 0;
+};
+
+std::vector<int> vertices_where(const TriMesh& mesh, bool top) {
+  std::vector<int> ids;
+  for (int v = 0; v < static_cast<int>(mesh.vertices.size()); ++v)
+    if (top ? mesh.vertices[v].y() > 1.55 : mesh.vertices[v].y() < 0.05) ids.push_back(v);
+  return ids;
+}
+
+GeneratedModel build_model(const std::string& name, const Template& tpl,
+                           const DeformationModel& deformation, const Eigen::MatrixXd& theta,
+                           int components);
+
+}  // namespace
+
+const std::vector<std::string>& default_model_names() {
+  static const std::vector<std::string> names = {"female", "male", "neutral"};
+  return names;
+}
+
+std::string default_model_asset(const std::string& name) {
+  return "assets/body_" + name + ".npz";
+}
+
+std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& options) {
   const Mannequin mannequin;
-  TriMesh mesh = marching_tetrahedra([&](const Vec3& p) { return mannequin.field(p); },
-                                     mannequin.bounds(), options.grid_spacing, options.threads);
+  Template tpl;
+  TriMesh& mesh = tpl.mesh;
+  mesh = marching_tetrahedra([&](const Vec3& p) { return mannequin.field(p); }, mannequin.bounds(),
+                             options.grid_spacing, options.threads);
   keep_largest_component(mesh);
   RemeshOptions remesh_options;
   remesh_options.target_edge = [&](const Vec3& p) { return mannequin.target_edge(p); };
@@ -25,20 +58,49 @@ GeneratedModel generate_default_model(const GeneratorOptions& options) {
     for (auto& f : mesh.faces) std::swap(f[1], f[2]);
 
   const Skeleton& skeleton = mannequin.skeleton();
-  const int V = static_cast<int>(mesh.vertices.size());
   // Rig weights (4 influences, for glTF) and broader weights for the shape deformation.
-  const Eigen::MatrixXd rig_weights = skin_weights(mesh.vertices, skeleton, 0.22, 4);
+  tpl.rig_weights = skin_weights(mesh.vertices, skeleton, 0.22, 4);
   const Eigen::MatrixXd deform_weights = skin_weights(mesh.vertices, skeleton, 0.45, 0);
+  tpl.regressor = joint_regressor(mesh.vertices, skeleton);
+  for (int j = 0; j < kJointCount; ++j) {
+    Vec3 fit = Vec3::Zero();
+    for (int v = 0; v < static_cast<int>(mesh.vertices.size()); ++v)
+      fit += tpl.regressor(j, v) * mesh.vertices[v];
+    tpl.joint_fit_error = std::max(tpl.joint_fit_error, (fit - skeleton.joints[j]).norm());
+  }
 
-  const DeformationModel deformation(mesh.vertices, skeleton, deform_weights);
-  const std::vector<Anthropometry> people = sample_population(options.population, options.seed);
-  Eigen::MatrixXd theta(options.population, deformation.parameter_count());
-  for (int i = 0; i < options.population; ++i)
-    theta.row(i) = deformation.parameters(people[i]).transpose();
-  const PcaResult pca = factored_pca(theta, deformation.basis(), options.components);
+  const DeformationModel deformation(mesh.vertices, vertex_normals(mesh), skeleton, deform_weights);
+  const int P = deformation.parameter_count();
+  auto thetas = [&](bool female) {
+    const std::vector<Anthropometry> people =
+        sample_population(female, options.population, options.seed + (female ? 0 : 1));
+    Eigen::MatrixXd theta(options.population, P);
+    for (int i = 0; i < options.population; ++i)
+      theta.row(i) = deformation.parameters(people[i]).transpose();
+    return theta;
+  };
+  const Eigen::MatrixXd female = thetas(true), male = thetas(false);
+  Eigen::MatrixXd both(female.rows() + male.rows(), P);
+  both << female, male;
+  std::vector<GeneratedModel> out;
+  out.push_back(build_model("female", tpl, deformation, female, options.components));
+  out.push_back(build_model("male", tpl, deformation, male, options.components));
+  out.push_back(build_model("neutral", tpl, deformation, both, options.components));
+  return out;
+}
+
+namespace {
+
+GeneratedModel build_model(const std::string& name, const Template& tpl,
+                           const DeformationModel& deformation, const Eigen::MatrixXd& theta,
+                           int components) {
+  const TriMesh& mesh = tpl.mesh;
+  const int V = static_cast<int>(mesh.vertices.size());
+  const PcaResult pca = factored_pca(theta, deformation.basis(), components);
   const int K = static_cast<int>(pca.variances.size());
 
   GeneratedModel out;
+  out.name = name;
   out.v_template.resize(V, 3);
   for (int v = 0; v < V; ++v)
     for (int a = 0; a < 3; ++a) out.v_template(v, a) = static_cast<float>(pca.mean[3 * v + a]);
@@ -61,30 +123,21 @@ GeneratedModel generate_default_model(const GeneratorOptions& options) {
   out.faces.resize(static_cast<Eigen::Index>(mesh.faces.size()), 3);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int a = 0; a < 3; ++a) out.faces(f, a) = static_cast<std::uint32_t>(mesh.faces[f][a]);
-  const Eigen::MatrixXd regressor = joint_regressor(mesh.vertices, skeleton);
-  out.j_regressor = regressor.cast<float>();
-  out.weights = rig_weights.cast<float>();
+  out.j_regressor = tpl.regressor.cast<float>();
+  out.weights = tpl.rig_weights.cast<float>();
   out.joints = (out.j_regressor * out.v_template);
-  for (int j = 0; j < kJointCount; ++j) {
-    Vec3 fit = Vec3::Zero();
-    for (int v = 0; v < V; ++v) fit += regressor(j, v) * mesh.vertices[v];
-    out.joint_fit_error = std::max(out.joint_fit_error, (fit - skeleton.joints[j]).norm());
-  }
+  out.joint_fit_error = tpl.joint_fit_error;
   {
     // Statures of the population from the y rows of the highest and lowest template vertices.
-    std::vector<int> top, bottom;
-    for (int v = 0; v < V; ++v) {
-      if (mesh.vertices[v].y() > 1.55) top.push_back(v);
-      if (mesh.vertices[v].y() < 0.05) bottom.push_back(v);
-    }
     auto rows = [&](const std::vector<int>& ids) {
       Eigen::MatrixXd b(ids.size(), deformation.parameter_count());
       for (std::size_t i = 0; i < ids.size(); ++i)
         b.row(i) = deformation.basis().row(3 * ids[i] + 1);
       return Eigen::MatrixXd(b * theta.transpose());
     };
-    const Eigen::MatrixXd yt = rows(top), yb = rows(bottom);
-    for (int i = 0; i < options.population; ++i)
+    const Eigen::MatrixXd yt = rows(vertices_where(mesh, true));
+    const Eigen::MatrixXd yb = rows(vertices_where(mesh, false));
+    for (Eigen::Index i = 0; i < theta.rows(); ++i)
       out.population_statures.push_back(yt.col(i).maxCoeff() - yb.col(i).minCoeff());
   }
 
@@ -139,5 +192,7 @@ GeneratedModel generate_default_model(const GeneratorOptions& options) {
   out.npz = npz_bytes(arrays);
   return out;
 }
+
+}  // namespace
 
 }  // namespace default_model

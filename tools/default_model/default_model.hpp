@@ -1,5 +1,7 @@
-// The generator of the embedded default body model (assets/default_body.npz): template
-// mannequin -> mesh -> rig -> population -> PCA -> SMPL-layout .npz bytes.
+// The generator of the default body models (assets/body_{female,male,neutral}.npz): template
+// mannequin -> mesh -> rig -> populations -> PCA per model -> SMPL-layout .npz bytes. The three
+// models share the template mesh (one topology) and rig; female and male are the PCA of each
+// sex's population, neutral the PCA of both populations together (as SMPL's neutral model).
 #pragma once
 
 #include <cstdint>
@@ -11,7 +13,7 @@
 namespace default_model {
 
 struct GeneratorOptions {
-  int population = 2000;
+  int population = 2000;  // bodies per sex
   int components = 16;
   std::uint64_t seed = 20200724;  // fixed: the committed asset depends on it
   double grid_spacing = 0.009;    // marching tetrahedra grid, metres
@@ -19,6 +21,7 @@ struct GeneratorOptions {
 };
 
 struct GeneratedModel {
+  std::string name;  // "female", "male" or "neutral"
   Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> v_template;  // V x 3 (population mean)
   Eigen::Matrix<std::uint32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces;  // F x 3
   Eigen::MatrixXf shapedirs;       // 3V x K (row 3v + axis), betas ~ N(0, 1)
@@ -32,6 +35,12 @@ struct GeneratedModel {
   std::vector<double> population_statures;  // m
 };
 
-GeneratedModel generate_default_model(const GeneratorOptions& options = {});
+// The three models, in the order female, male, neutral.
+std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& options = {});
+
+// Names of the models in generate_default_models' order, and the asset file of each
+// (relative to the source tree).
+const std::vector<std::string>& default_model_names();
+std::string default_model_asset(const std::string& name);
 
 }  // namespace default_model

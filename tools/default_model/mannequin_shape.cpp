@@ -93,7 +93,7 @@ Mannequin::Mannequin() {
   J[kNeck] = Vec3(0, 1.45, -0.025);
   J[kHead] = Vec3(0, 1.54, 0.0);
   J[kLeftHip] = Vec3(0.085, 0.865, 0.0);
-  J[kLeftKnee] = Vec3(0.102, 0.48, 0.01);
+  J[kLeftKnee] = Vec3(0.106, 0.48, 0.01);
   J[kLeftAnkle] = Vec3(0.118, 0.075, -0.02);
   J[kLeftFoot] = Vec3(0.128, 0.02, 0.10);
   J[kLeftCollar] = Vec3(0.045, 1.385, -0.02);

@@ -10,76 +10,6 @@ namespace default_model {
 
 namespace {
 
-// Anthropometric summary statistics (mean, SD), cm and kg, of the 2012 U.S. Army
-// Anthropometric Survey (ANSUR II): C. C. Gordon et al., "2012 Anthropometric Survey of U.S.
-// Army Personnel: Methods and Summary Statistics", NATICK/TR-15/007, 2014 (n = 4082 men,
-// 1986 women). Values rounded; see docs/default-model.md for the list and caveats.
-struct Stat {
-  double mean, sd;
-};
-struct SexStats {
-  Stat stature, weight, chest, waist, hip, biacromial, chest_depth, neck, head;
-};
-constexpr SexStats kMale{{175.6, 6.9}, {85.5, 14.2}, {106.4, 8.6}, {94.2, 11.1}, {102.3, 7.6},
-                         {41.6, 1.9},  {25.3, 2.3},  {39.6, 2.4},  {57.3, 1.6}};
-constexpr SexStats kFemale{{162.9, 6.4}, {67.8, 11.4}, {95.2, 7.8}, {85.6, 9.8}, {101.5, 7.6},
-                           {36.5, 1.8},  {24.1, 2.3},  {33.1, 1.9}, {55.4, 1.6}};
-
-constexpr int kFactors =
-    12;  // stature weight chest waist hip shoulder cdepth neck head leg arm muscle
-
-// Within-sex correlations, rounded from the correlation tables of the Army surveys (Cheverud
-// et al. 1990, NATICK/TR-90/032, for the 1988 survey; the 2012 survey shows the same pattern).
-Eigen::MatrixXd correlation() {
-  Eigen::MatrixXd R = Eigen::MatrixXd::Identity(kFactors, kFactors);
-  auto set = [&](int a, int b, double r) { R(a, b) = R(b, a) = r; };
-  enum { St, Wt, Ch, Wa, Hp, Sh, Cd, Nk, Hd, Lg, Ar, Mu };
-  set(St, Wt, 0.45);
-  set(St, Ch, 0.20);
-  set(St, Wa, 0.15);
-  set(St, Hp, 0.30);
-  set(St, Sh, 0.45);
-  set(St, Cd, 0.10);
-  set(St, Nk, 0.25);
-  set(St, Hd, 0.30);
-  set(St, Lg, 0.10);
-  set(Wt, Ch, 0.85);
-  set(Wt, Wa, 0.85);
-  set(Wt, Hp, 0.85);
-  set(Wt, Sh, 0.50);
-  set(Wt, Cd, 0.75);
-  set(Wt, Nk, 0.75);
-  set(Wt, Hd, 0.25);
-  set(Wt, Mu, 0.20);
-  set(Ch, Wa, 0.80);
-  set(Ch, Hp, 0.70);
-  set(Ch, Sh, 0.45);
-  set(Ch, Cd, 0.80);
-  set(Ch, Nk, 0.70);
-  set(Ch, Mu, 0.25);
-  set(Wa, Hp, 0.75);
-  set(Wa, Sh, 0.30);
-  set(Wa, Cd, 0.75);
-  set(Wa, Nk, 0.65);
-  set(Wa, Mu, -0.10);
-  set(Hp, Sh, 0.30);
-  set(Hp, Cd, 0.60);
-  set(Hp, Nk, 0.50);
-  set(Sh, Cd, 0.35);
-  set(Sh, Nk, 0.45);
-  set(Sh, Mu, 0.35);
-  set(Cd, Nk, 0.60);
-  set(Nk, Mu, 0.35);
-  // Rounded correlations need not be positive definite; shrink towards I until they are.
-  for (double alpha = 0.0; alpha < 1.0; alpha += 0.02) {
-    Eigen::MatrixXd S = (1 - alpha) * R + alpha * Eigen::MatrixXd::Identity(kFactors, kFactors);
-    Eigen::LLT<Eigen::MatrixXd> llt(S);
-    if (llt.info() == Eigen::Success && llt.matrixL().toDenseMatrix().diagonal().minCoeff() > 0.05)
-      return S;
-  }
-  return Eigen::MatrixXd::Identity(kFactors, kFactors);
-}
-
 // Standard normal numbers from a 64-bit Mersenne twister by Box-Muller, so the sequence does
 // not depend on the standard library's distribution implementation.
 class Normal {
@@ -97,7 +27,11 @@ class Normal {
     has_spare_ = true;
     return r * std::cos(2.0 * M_PI * u2);
   }
-  std::uint64_t bits() { return engine_(); }
+  double truncated(double limit) {
+    double x = (*this)();
+    while (std::abs(x) > limit) x = (*this)();
+    return x;
+  }
 
  private:
   std::mt19937_64 engine_;
@@ -105,72 +39,89 @@ class Normal {
   double spare_ = 0;
 };
 
-double value(const Stat& s, double z) {
-  return s.mean + s.sd * z;
+Eigen::MatrixXd cholesky_of(const SurveyTable& t) {
+  Eigen::MatrixXd R(kSurveyMeasures, kSurveyMeasures);
+  for (int a = 0; a < kSurveyMeasures; ++a)
+    for (int b = 0; b < kSurveyMeasures; ++b) R(a, b) = t.corr[a][b];
+  // The table is rounded to 3 decimals; shrink towards I in the unlikely case that made it
+  // indefinite.
+  for (double alpha = 0.0; alpha < 1.0; alpha += 0.01) {
+    const Eigen::MatrixXd S =
+        (1 - alpha) * R + alpha * Eigen::MatrixXd::Identity(kSurveyMeasures, kSurveyMeasures);
+    Eigen::LLT<Eigen::MatrixXd> llt(S);
+    if (llt.info() == Eigen::Success) return llt.matrixL();
+  }
+  return Eigen::MatrixXd::Identity(kSurveyMeasures, kSurveyMeasures);
 }
-double mid(const Stat& a, const Stat& b) {
-  return 0.5 * (a.mean + b.mean);
-}
+
+// The independent factors' amplitudes below are per unit of this; 1.45 makes each of them big
+// enough to be seen in a grid cell (1 px ~ 4.5 mm) as its own principal component.
+constexpr double kFactorScale = 1.45;
 
 }  // namespace
 
-std::vector<Anthropometry> sample_population(int count, std::uint64_t seed) {
-  const Eigen::MatrixXd L = correlation().llt().matrixL();
+std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
+                                             double truncate) {
+  const SurveyTable& t = female ? kFemale : kMale;
+  const Eigen::MatrixXd L = cholesky_of(t);
   Normal normal(seed);
   std::vector<Anthropometry> people;
   people.reserve(count);
   for (int i = 0; i < count; ++i) {
     Anthropometry a;
-    a.female = (normal.bits() >> 63) != 0;  // 50/50 mixture
-    Eigen::VectorXd z(kFactors);
-    for (int k = 0; k < kFactors; ++k) {
-      // Truncate at 2.5 SD: the population models plausible adults, not the survey's tails.
-      double x = normal();
-      while (std::abs(x) > 2.5) x = normal();
-      z[k] = x;
-    }
+    a.female = female;
+    Eigen::VectorXd z(kSurveyMeasures);
+    for (int k = 0; k < kSurveyMeasures; ++k) z[k] = normal.truncated(truncate);
     z = L * z;
-    const SexStats& s = a.female ? kFemale : kMale;
-    a.stature_cm = value(s.stature, z[0]);
-    a.weight_kg = value(s.weight, z[1]);
-    a.chest_cm = value(s.chest, z[2]);
-    a.waist_cm = value(s.waist, z[3]);
-    a.hip_cm = value(s.hip, z[4]);
-    a.biacromial_cm = value(s.biacromial, z[5]);
-    a.chest_depth_cm = value(s.chest_depth, z[6]);
-    a.neck_cm = value(s.neck, z[7]);
-    a.head_cm = value(s.head, z[8]);
-    a.leg_ratio_z = z[9];
-    a.arm_z = z[10];
-    a.muscle_z = z[11] + (a.female ? -0.5 : 0.5);
+    for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
+    IndependentFactors& f = a.f;
+    for (double* x : {&f.fat_distribution, &f.fat_layer, &f.muscle, &f.bust, &f.shoulder_slope,
+                      &f.posture, &f.lordosis, &f.head_forward, &f.neck_length,
+                      &f.shoulders_forward, &f.knee_alignment, &f.limb_fat})
+      *x = kFactorScale * normal.truncated(truncate);
     people.push_back(a);
   }
   return people;
 }
 
-Anthropometry mean_person() {
+Anthropometry reference_person() {
   Anthropometry a;
-  a.stature_cm = mid(kMale.stature, kFemale.stature);
-  a.weight_kg = mid(kMale.weight, kFemale.weight);
-  a.chest_cm = mid(kMale.chest, kFemale.chest);
-  a.waist_cm = mid(kMale.waist, kFemale.waist);
-  a.hip_cm = mid(kMale.hip, kFemale.hip);
-  a.biacromial_cm = mid(kMale.biacromial, kFemale.biacromial);
-  a.chest_depth_cm = mid(kMale.chest_depth, kFemale.chest_depth);
-  a.neck_cm = mid(kMale.neck, kFemale.neck);
-  a.head_cm = mid(kMale.head, kFemale.head);
+  for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = 0.5 * (kFemale.mean[k] + kMale.mean[k]);
   return a;
 }
 
 namespace {
 
 // Parameter layout: for each joint j, 3 entries for the new bone anchor, then 3 scales (along,
-// u, v); then the two breast amplitudes and the vertical shift.
+// u, v); then the amplitudes of the displacement fields and the vertical shift.
+enum Field : int {
+  kBreastLeft,
+  kBreastRight,
+  kBelly,
+  kGluteofemoral,
+  kFatLayer,
+  kMuscle,
+  kPostureShear,
+  kHeadForward,
+  kLordosis,
+  kShouldersForward,
+  kKneeAlignment,
+  kLimbFat,
+  kFieldCount
+};
 constexpr int kAnchor = 0;
 constexpr int kScale = 3 * kJointCount;
-constexpr int kBreast = 6 * kJointCount;
-constexpr int kShift = kBreast + 2;
+constexpr int kFields = 6 * kJointCount;
+constexpr int kShift = kFields + kFieldCount;
 constexpr int kParams = kShift + 1;
+
+// Template landmarks (the mannequin is 1.70 m tall, see mannequin_shape.cpp).
+constexpr double kTemplateStature = 1.70;
+
+double gauss(double x, double centre, double sd) {
+  const double t = (x - centre) / sd;
+  return std::exp(-0.5 * t * t);
+}
 
 Vec3 breast_centre(int side) {
   return Vec3(side == 0 ? 0.085 : -0.085, 1.255, 0.10);
@@ -183,11 +134,20 @@ double breast_bump(const Vec3& p, int side) {
   return std::exp(-r2 / (2 * 0.05 * 0.05)) * smoothstep(0.0, 0.06, p.z());
 }
 
+// Forward lean of everything above the lower back, as a shear (dz per metre above 1.0 m).
+double posture_height(double y) {
+  return (y - 1.0) * smoothstep(0.95, 1.12, y);
+}
+double head_forward_height(double y) {
+  return (y - 1.42) * smoothstep(1.40, 1.52, y);
+}
+
 }  // namespace
 
 DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
+                                   const std::vector<Vec3>& template_normals,
                                    const Skeleton& skeleton, const Eigen::MatrixXd& weights)
-    : skeleton_(skeleton), vertices_(template_vertices), weights_(weights) {
+    : skeleton_(skeleton) {
   const int V = static_cast<int>(template_vertices.size());
   for (int j = 0; j < kJointCount; ++j) {
     const Vec3 along = (skeleton.bone_end[j] - skeleton.bone_start[j]).normalized();
@@ -202,23 +162,88 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     frames_[j].col(2) = v;
   }
   basis_ = Eigen::MatrixXd::Zero(3 * V, kParams);
+  const auto& J = skeleton.joints;
   for (int i = 0; i < V; ++i) {
     const Vec3& p = template_vertices[i];
+    const Vec3& n = template_normals[i];
+    auto w = [&](int j) { return weights(i, j); };
     for (int j = 0; j < kJointCount; ++j) {
-      const double w = weights(i, j);
-      if (w == 0.0) continue;
-      for (int a = 0; a < 3; ++a) basis_(3 * i + a, kAnchor + 3 * j + a) += w;
+      const double wj = w(j);
+      if (wj == 0.0) continue;
+      for (int a = 0; a < 3; ++a) basis_(3 * i + a, kAnchor + 3 * j + a) += wj;
       const Vec3 d = p - skeleton.bone_start[j];
       for (int k = 0; k < 3; ++k) {
         const Vec3 r = frames_[j].col(k);
-        const Vec3 contrib = w * r * r.dot(d);
+        const Vec3 contrib = wj * r * r.dot(d);
         for (int a = 0; a < 3; ++a) basis_(3 * i + a, kScale + 3 * j + k) += contrib[a];
       }
     }
+    auto set_field = [&](int field, const Vec3& disp) {
+      for (int a = 0; a < 3; ++a) basis_(3 * i + a, kFields + field) = disp[a];
+    };
+    const double arm = w(kLeftShoulder) + w(kRightShoulder) + w(kLeftElbow) + w(kRightElbow) +
+                       w(kLeftWrist) + w(kRightWrist) + w(kLeftHand) + w(kRightHand);
+    const double head = w(kHead);
+    const double extremity = w(kLeftHand) + w(kRightHand) + w(kLeftWrist) + w(kRightWrist) +
+                             w(kLeftFoot) + w(kRightFoot) + 0.6 * (w(kLeftAnkle) + w(kRightAnkle));
+    const double torso = std::max(0.0, 1.0 - arm - head - extremity);
+    // Soft-tissue fields fade out towards the soles: feet keep their shape (a sole pushed
+    // along its normal folds).
+    const double above_feet = smoothstep(0.05, 0.16, p.y());
+    const double front = smoothstep(-0.02, 0.07, p.z());
+    const double back = smoothstep(0.0, -0.08, p.z());
+
     for (int side = 0; side < 2; ++side) {
       const double b = breast_bump(p, side);
       const Vec3 dir = Vec3(side == 0 ? 0.25 : -0.25, -0.35, 1.0).normalized();
-      for (int a = 0; a < 3; ++a) basis_(3 * i + a, kBreast + side) = b * dir[a];
+      set_field(kBreastLeft + side, b * dir);
+    }
+    // Belly: the front of the abdomen, centred a little below the navel.
+    // Belly and flanks: the front of the abdomen, centred a little below the navel, and
+    // less at the sides and the lower back.
+    set_field(kBelly, torso * (0.35 + 0.65 * front) * gauss(p.y(), 1.0, 0.11) *
+                          (0.4 + 0.6 * gauss(p.x(), 0.0, 0.14)) *
+                          (0.6 * n + Vec3(0, 0, 0.4 * front)));
+    // Hips, buttocks and outer thighs (gynoid fat), fading down the thighs.
+    set_field(kGluteofemoral, torso * gauss(p.y(), 0.83, 0.11) * (0.55 + 0.45 * back) * n);
+    // Fat layer: all over the torso and limbs, thinner on head, hands and feet.
+    set_field(kFatLayer,
+              above_feet * std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * n);
+    // Muscles: deltoids and upper arms, forearms, trapezius, pectorals, thighs, calves.
+    const double muscle = w(kLeftShoulder) + w(kRightShoulder) +
+                          0.3 * (w(kLeftElbow) + w(kRightElbow)) + w(kLeftCollar) +
+                          w(kRightCollar) + w(kSpine3) * front * gauss(p.y(), 1.28, 0.06) +
+                          0.8 * (w(kLeftHip) + w(kRightHip)) + 0.8 * (w(kLeftKnee) + w(kRightKnee));
+    set_field(kMuscle, above_feet * muscle * n);
+    // Posture: the upper body leans forward; arms move with their shoulder.
+    const double lean =
+        (1.0 - arm) * posture_height(p.y()) + arm * posture_height(J[kLeftShoulder].y());
+    set_field(kPostureShear, Vec3(0, 0, lean));
+    set_field(kHeadForward, Vec3(0, 0, (1.0 - arm) * head_forward_height(p.y())));
+    // Lordosis: buttocks back, lower back in (forwards), belly out.
+    {
+      const double rear = smoothstep(0.04, -0.08, p.z());
+      const double dz = (-gauss(p.y(), 0.84, 0.12) + 0.8 * gauss(p.y(), 1.05, 0.10)) * rear +
+                        0.4 * gauss(p.y(), 0.98, 0.10) * front;
+      set_field(kLordosis, Vec3(0, 0, torso * dz));
+    }
+    // Rounded shoulders: arms and the shoulder girdle forward.
+    set_field(kShouldersForward, Vec3(0, 0, arm + 0.6 * (w(kLeftCollar) + w(kRightCollar))));
+    // Knee alignment: the knees move apart (bow legs) or together, most at the knee, fading
+    // towards hip and ankle, which stay.
+    {
+      const double legs = w(kLeftHip) + w(kRightHip) + w(kLeftKnee) + w(kRightKnee) +
+                          w(kLeftAnkle) + w(kRightAnkle) + w(kLeftFoot) + w(kRightFoot);
+      const double side = p.x() >= 0 ? 1.0 : -1.0;
+      set_field(kKneeAlignment, Vec3(side * legs * gauss(p.y(), 0.45, 0.16), 0, 0));
+    }
+    // Peripheral versus central fat: upper arms, forearms, thighs and calves fuller, the
+    // trunk a little slimmer. Thinner segments get less, so a slim forearm never collapses.
+    {
+      const double limbs = 0.6 * (w(kLeftShoulder) + w(kRightShoulder)) +
+                           0.25 * (w(kLeftElbow) + w(kRightElbow)) + (w(kLeftHip) + w(kRightHip)) +
+                           0.6 * (w(kLeftKnee) + w(kRightKnee));
+      set_field(kLimbFat, above_feet * (limbs - 0.4 * torso * (1.0 - limbs)) * n);
     }
     basis_(3 * i + 1, kShift) = 1.0;
     if (p.y() < 0.03) sole_vertices_.push_back(i);
@@ -235,75 +260,88 @@ Eigen::VectorXd DeformationModel::rest_parameters() const {
 }
 
 Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
-  const Anthropometry m = mean_person();
-  const double s = a.stature_cm / m.stature_cm;
-  // Leg length (hip joint height) varies +-2.2 % (1 SD) relative to stature; the torso takes
-  // up the rest so stature is kept.
-  const double leg_share = skeleton_.joints[kLeftHip].y() / 1.70;
-  const double leg = 1.0 + 0.022 * a.leg_ratio_z;
-  const double torso = (1.0 - leg_share * leg) / (1.0 - leg_share);
-  const double ls = s * leg, ts = s * torso;
-  const double arm = s * (1.0 + 0.025 * a.arm_z);
-  const double chest = a.chest_cm / m.chest_cm;
-  const double waist = a.waist_cm / m.waist_cm;
-  const double hip = a.hip_cm / m.hip_cm;
-  const double shoulder = a.biacromial_cm / m.biacromial_cm;
-  const double depth = a.chest_depth_cm / m.chest_depth_cm;
-  const double neck = a.neck_cm / m.neck_cm;
-  const double head = a.head_cm / m.head_cm;
-  const double muscle = a.muscle_z;
-  // Limb girth from body mass at the given stature (mass ~ length x girth^2).
-  const double limb = std::sqrt(a.weight_kg / m.weight_kg / s);
-  const double arm_girth = limb * (1.0 + 0.045 * muscle);
-  const double thigh_girth = limb * std::sqrt(hip / limb) * (1.0 + 0.025 * muscle);
-  const double calf_girth = std::pow(limb, 0.6) * (1.0 + 0.02 * muscle);
-
+  const Anthropometry ref = reference_person();
+  auto r = [&](int k) { return a.m[k] / ref.m[k]; };
+  const IndependentFactors& f = a.f;
   const auto& J = skeleton_.joints;
+
+  // Vertical proportions: the hip joints follow the crotch height, the torso and head take
+  // up the rest of the stature.
+  const double s = r(k_stature);
+  const double ls = r(k_crotch_height);
+  const double hip_y = J[kLeftHip].y();
+  const double ts = (kTemplateStature * s - hip_y * ls) / (kTemplateStature - hip_y);
+  const double upper_arm = r(k_upper_arm_length);
+  // forearm + hand length: the forearm takes what the hand does not.
+  const double hand = r(k_hand_length);
+  const double forearm = (r(k_forearm_hand_length) * 0.33 - hand * 0.085) / (0.33 - 0.085);
+  const double foot = r(k_foot_length);
+  const double head = std::sqrt(r(k_head_circ) * r(k_head_length));
+
+  // Cross sections. The mannequin was modelled slimmer than the survey's reference person (its
+  // tape-measure waist read 75.5 cm for a survey mean of 89.9 cm, its volume gave 64 kg for
+  // 77 kg): these factors calibrate it, so that the mean bodies' mass matches the survey.
+  constexpr double kPelvisCal = 1.04, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.05;
+  const double pelvis_w = kPelvisCal * r(k_hip_breadth);
+  const double pelvis_d = kPelvisCal * r(k_buttock_depth);
+  const double waist_w = kWaistCal * r(k_waist_breadth), waist_d = kWaistCal * r(k_waist_depth);
+  const double chest_w = kChestCal * r(k_chest_breadth), chest_d = kChestCal * r(k_chest_depth);
+  const double neck = r(k_neck_circ);
+  const double thigh = kLimbCal * r(k_thigh_circ), calf = kLimbCal * r(k_calf_circ);
+  const double ankle = r(k_ankle_circ);
+  const double biceps = kLimbCal * r(k_biceps_circ), forearm_g = r(k_forearm_circ);
+  const double wrist = r(k_wrist_circ);
+  const double shoulder = r(k_biacromial);
+  const double pelvis_breadth = r(k_bicristal);
+
   std::array<Vec3, kJointCount> Jn;
   auto place = [&](int j, const Vec3& scale) {
     const int p = joint_parents()[j];
     Jn[j] = Jn[p] + (J[j] - J[p]).cwiseProduct(scale);
   };
-  const double hip_breadth = std::pow(hip, 0.8) * std::pow(thigh_girth, 0.2);
   Jn[kPelvis] = J[kPelvis];
   for (int side = 0; side < 2; ++side) {
-    place(kLeftHip + side, Vec3(hip_breadth, ts, s));
-    place(kLeftKnee + side, Vec3(hip_breadth, ls, s));
-    place(kLeftAnkle + side, Vec3(hip_breadth, ls, s));
-    place(kLeftFoot + side, Vec3(s, s, s));
+    place(kLeftHip + side, Vec3(pelvis_breadth, ls, s));
+    place(kLeftKnee + side, Vec3(pelvis_breadth, ls, s));
+    place(kLeftAnkle + side, Vec3(pelvis_breadth, ls, s));
+    place(kLeftFoot + side, Vec3(foot, foot, foot));
   }
   place(kSpine1, Vec3(1, ts, s));
   place(kSpine2, Vec3(1, ts, s));
   place(kSpine3, Vec3(1, ts, s));
-  place(kNeck, Vec3(1, ts, depth));
+  place(kNeck, Vec3(1, ts, chest_d));
+  // Neck length: +-1 SD moves the head by 8 mm.
   place(kHead, Vec3(1, head * ts / s, head));
+  Jn[kHead].y() += 0.018 * f.neck_length;
   for (int side = 0; side < 2; ++side) {
     place(kLeftCollar + side, Vec3(shoulder, ts, s));
     place(kLeftShoulder + side, Vec3(shoulder, ts, s));
-    place(kLeftElbow + side, Vec3(arm, arm, arm));
-    place(kLeftWrist + side, Vec3(arm, arm, arm));
-    place(kLeftHand + side, Vec3(arm, arm, arm));
+    // Shoulder slope: the shoulder joint 12 mm higher or lower per SD.
+    Jn[kLeftShoulder + side].y() += 0.012 * f.shoulder_slope;
+    place(kLeftElbow + side, Vec3(upper_arm, upper_arm, upper_arm));
+    place(kLeftWrist + side, Vec3(forearm, forearm, forearm));
+    place(kLeftHand + side, Vec3(hand, hand, hand));
   }
 
   Eigen::VectorXd t = Eigen::VectorXd::Zero(kParams);
   std::array<Vec3, kJointCount> scale;
-  scale[kPelvis] = Vec3(ts, hip, hip);
-  scale[kSpine1] = Vec3(ts, waist, waist * std::pow(waist, 0.3));
-  scale[kSpine2] = Vec3(ts, std::sqrt(waist * chest), std::sqrt(waist * depth));
-  scale[kSpine3] = Vec3(ts, std::pow(chest, 0.7) * std::pow(shoulder, 0.3), depth);
+  scale[kPelvis] = Vec3(ts, pelvis_w, pelvis_d);
+  scale[kSpine1] = Vec3(ts, waist_w, waist_d);
+  scale[kSpine2] = Vec3(ts, std::sqrt(waist_w * chest_w), std::sqrt(waist_d * chest_d));
+  scale[kSpine3] = Vec3(ts, chest_w, chest_d);
   scale[kNeck] = Vec3(ts, neck, neck);
   scale[kHead] = Vec3(head, head, head);
   for (int side = 0; side < 2; ++side) {
-    const double trap = std::sqrt(chest * neck) * (1.0 + 0.02 * muscle);
-    scale[kLeftCollar + side] = Vec3(shoulder, trap, trap);
-    scale[kLeftShoulder + side] = Vec3(arm, arm_girth, arm_girth);
-    scale[kLeftElbow + side] = Vec3(arm, std::pow(arm_girth, 0.7), std::pow(arm_girth, 0.7));
-    scale[kLeftWrist + side] = Vec3(arm, s, s);
-    scale[kLeftHand + side] = Vec3(arm, s, s);
-    scale[kLeftHip + side] = Vec3(ls, thigh_girth, thigh_girth);
-    scale[kLeftKnee + side] = Vec3(ls, calf_girth, calf_girth);
-    scale[kLeftAnkle + side] = Vec3(s, s, s);
-    scale[kLeftFoot + side] = Vec3(s, s, s);
+    scale[kLeftCollar + side] =
+        Vec3(shoulder, std::sqrt(chest_d * neck), std::sqrt(chest_d * neck));
+    scale[kLeftShoulder + side] = Vec3(upper_arm, biceps, biceps);
+    scale[kLeftElbow + side] = Vec3(forearm, forearm_g, forearm_g);
+    scale[kLeftWrist + side] = Vec3(hand, wrist, wrist);
+    scale[kLeftHand + side] = Vec3(hand, std::sqrt(hand * wrist), std::sqrt(hand * wrist));
+    scale[kLeftHip + side] = Vec3(ls, thigh, thigh);
+    scale[kLeftKnee + side] = Vec3(ls, calf, calf);
+    scale[kLeftAnkle + side] = Vec3(ls, ankle, ankle);
+    scale[kLeftFoot + side] = Vec3(foot, std::sqrt(foot * ankle), std::sqrt(foot * ankle));
   }
   for (int j = 0; j < kJointCount; ++j) {
     // Bone anchors move with their joint (the pelvis bone's anchor sits below its joint).
@@ -311,9 +349,24 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
     t.segment<3>(kAnchor + 3 * j) = Jn[j] + offset.cwiseProduct(Vec3(1, ts, s));
     t.segment<3>(kScale + 3 * j) = scale[j];
   }
-  const double breast = a.female ? std::max(0.0, 0.022 + 0.012 * (a.chest_cm - 95.2) / 7.8)
-                                 : std::max(0.0, 0.004 + 0.004 * muscle);
-  t[kBreast] = t[kBreast + 1] = breast;
+
+  // Breasts: women's grow with the chest girth at the given chest breadth and depth and with
+  // their own factor; men's are a slight pectoral curve.
+  const SurveyTable& own = a.female ? kFemale : kMale;
+  const double chest_z = (a.m[k_chest_circ] - own.mean[k_chest_circ]) / own.sd[k_chest_circ];
+  const double breast = a.female ? std::max(0.0, 0.024 + 0.006 * chest_z + 0.016 * f.bust)
+                                 : std::max(0.0, 0.004 + 0.002 * f.muscle + 0.002 * chest_z);
+  t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
+  t[kFields + kBelly] = 0.0125 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
+  t[kFields + kGluteofemoral] = -0.012 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
+  t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
+  t[kFields + kMuscle] = 0.006 * f.muscle + 0.002 * (a.female ? -1.0 : 1.0);
+  t[kFields + kPostureShear] = 0.018 * f.posture;
+  t[kFields + kHeadForward] = 0.04 * f.head_forward;
+  t[kFields + kLordosis] = 0.021 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
+  t[kFields + kShouldersForward] = 0.009 * f.shoulders_forward;
+  t[kFields + kLimbFat] = 0.0072 * f.limb_fat;
+  t[kFields + kKneeAlignment] = 0.005 * f.knee_alignment;
   // Soles on y = 0.
   double lowest = 1e9;
   for (int i : sole_vertices_) lowest = std::min(lowest, basis_.row(3 * i + 1).dot(t));

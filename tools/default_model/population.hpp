@@ -1,12 +1,17 @@
-// The body population of the default model: anthropometric factors drawn from a correlated
-// distribution per sex (ANSUR II summary statistics, see docs/default-model.md), mapped to a
-// deformation of the template mesh. The deformation of a vertex is a blend, by smooth
-// per-bone weights, of per-bone affine maps (bone moved to its new joint, scaled along and
-// across the bone) plus a breast/pectoral displacement and a vertical shift that keeps the
-// soles on y = 0. It is linear in the per-body parameter vector theta, so every body is
-// B * theta for one fixed basis B (3V x P); PCA can use that without materialising all bodies.
+// The body populations of the default models. Per sex, 29 anthropometric measures (stature,
+// mass, girths, breadths, depths, segment lengths) are drawn from a correlated normal whose
+// means, SDs and correlations were derived from the ANSUR II public data
+// (tools/ansur2_stats.py -> ansur2_table.inc), plus independent factors that vary in people
+// apart from those measures (fat distribution, fat layer, muscularity, bust, shoulder slope,
+// posture, neck). They are mapped to a deformation of the one template mesh: per-bone affine
+// maps (bone moved to its new joint, scaled along and across itself) blended by smooth
+// weights, plus displacement fields (breasts, belly, hips and thighs, fat layer, muscles,
+// postural shears) and a vertical shift that keeps the soles on y = 0. The deformation is
+// linear in the per-body parameter vector theta, so every body is B * theta for one fixed
+// basis B (3V x P); PCA uses that without materialising all bodies.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -16,22 +21,44 @@
 
 namespace default_model {
 
+#include "ansur2_table.inc"
+
+// Factors drawn independently of the survey measures (standard normal, within sex).
+struct IndependentFactors {
+  double fat_distribution = 0;  // + belly (android), - hips and thighs (gynoid)
+  double fat_layer = 0;         // subcutaneous layer over torso and limbs
+  double muscle = 0;            // deltoids, pectorals, arms, thighs, calves, trapezius
+  double bust = 0;              // breast volume beyond what the chest girth implies
+  double shoulder_slope = 0;    // + square shoulders, - sloping
+  double posture = 0;           // + upper body leaning forward (rounded back)
+  double lordosis = 0;          // + hollow back, prominent buttocks
+  double head_forward = 0;      // + head carried forward
+  double neck_length = 0;
+  double shoulders_forward = 0;  // + rounded (protracted) shoulders, arms carried forward
+  double knee_alignment = 0;     // + bow legs (knees apart), - knock knees
+  double limb_fat = 0;           // + fuller limbs for the trunk (peripheral vs central fat)
+};
+
 struct Anthropometry {
   bool female = false;
-  double stature_cm = 0, weight_kg = 0, chest_cm = 0, waist_cm = 0, hip_cm = 0;
-  double biacromial_cm = 0, chest_depth_cm = 0, neck_cm = 0, head_cm = 0;
-  double leg_ratio_z = 0, arm_z = 0, muscle_z = 0;  // standardised, within sex
+  std::array<double, kSurveyMeasures> m{};  // survey measures, cm (weight in kg)
+  IndependentFactors f;
 };
 
 // Deterministic: the same seed gives the same population on every platform with IEEE doubles.
-std::vector<Anthropometry> sample_population(int count, std::uint64_t seed);
+// Each standard normal (of the survey's correlated measures and of the independent factors)
+// is truncated at `truncate` SD.
+std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
+                                             double truncate = 2.3);
 
-// The mean person (average of the female and male means), the template's proportions.
-Anthropometry mean_person();
+// The reference person the template mannequin was built for: the average of the female and
+// male survey means (1.69 m), with all independent factors 0.
+Anthropometry reference_person();
 
 class DeformationModel {
  public:
-  DeformationModel(const std::vector<Vec3>& template_vertices, const Skeleton& skeleton,
+  DeformationModel(const std::vector<Vec3>& template_vertices,
+                   const std::vector<Vec3>& template_normals, const Skeleton& skeleton,
                    const Eigen::MatrixXd& weights);
 
   int parameter_count() const { return static_cast<int>(basis_.cols()); }
@@ -45,8 +72,6 @@ class DeformationModel {
   Skeleton skeleton_;
   std::array<Eigen::Matrix3d, kJointCount> frames_;  // columns: along, u, v
   std::vector<int> sole_vertices_;
-  std::vector<Vec3> vertices_;
-  Eigen::MatrixXd weights_;
 };
 
 }  // namespace default_model
