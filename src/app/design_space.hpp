@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "app/session.hpp"
 #include "render/camera.hpp"
 
 namespace app {
@@ -82,6 +83,15 @@ class DesignSpace {
   virtual std::vector<std::pair<std::string, double>> numbers(const PreparedCell& /*cell*/) const {
     return {};
   }
+
+  // What a person can see of a change (issue 9): how different the cells of some points look
+  // (entry (i, j) in mm, largest difference), so the session never shows a grid of
+  // look-alikes, and how much each coordinate changes a cell over its range (mm), so the
+  // optimizer does not explore invisible directions as if they mattered. The window installs
+  // both on every session, exactly as `simulate --function body` does. Empty: no such
+  // measure (the session then zooms by the paper's fixed factor).
+  virtual PairwiseDistance perceptual_distance() const { return {}; }
+  virtual Eigen::VectorXd perceptual_scale() const { return {}; }
 
   // Export: the file a point becomes (glTF for bodies, an image and its parameters for photos).
   virtual std::string default_export_name() const = 0;  // "body.glb"

@@ -56,6 +56,7 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
   options_.space = space_->settings();
   const int grid = options_.grid_size > 0 ? options_.grid_size : space_->default_grid_size();
   session_.emplace(session_settings(options_.space, grid, options_.zoom_levels, options_.seed));
+  install_perception();
 
   if (options_.session_path.empty()) {
     autosave_enabled_ = false;
@@ -200,7 +201,10 @@ void GalleryController::click(const intent::ClickCell& c) {
               << session_->clicks_on_plane() << ")" << std::endl;
   }
   if (r == ClickResult::kPlaneFinished) {
-    say(MessageKind::kInfo, "choice submitted; computing the next plane...");
+    // A plane that ends before its last zoom level says why in plain words (issue 9).
+    const std::string note = session_->plane_note();
+    say(MessageKind::kInfo, note.empty() ? "choice submitted; computing the next plane..."
+                                         : note + " Computing the next plane...");
   }
 }
 
@@ -341,12 +345,26 @@ Eigen::VectorXd GalleryController::shown_point() const {
   return session_->current_best();
 }
 
+void GalleryController::install_perception() {
+  // A session restored from a file keeps the scale it was saved with (its planes were built
+  // with it); a new one takes the space's.
+  if (session_->search().options().perceptual_scale.size() == 0) {
+    const Eigen::VectorXd scale = space_->perceptual_scale();
+    if (scale.size() == session_->settings().components && scale.allFinite() &&
+        (scale.array() > 0.0).all()) {
+      session_->set_perceptual_scale(scale);
+    }
+  }
+  session_->set_perceptual_distance(space_->perceptual_distance());
+}
+
 void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> space) {
   if (space) {
     space_ = std::move(space);
     ++space_generation_;
   }
   session_ = std::move(session);
+  install_perception();
   redo_.clear();
   ++generation_;
   inspected_ = -1;

@@ -157,6 +157,8 @@ class GalleryController {
   void use_point(const Eigen::VectorXd& x);
 
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
+  // The space's perceptual hooks on `session_` (never saved, so after every load too).
+  void install_perception();
   void remember_for_redo();
   void after_change(const sps::Plane& plane_before);
   void poll_worker();

@@ -65,7 +65,21 @@ std::string signed_centimetres(double m) {
 }  // namespace
 
 BodySpace::BodySpace(body::Model model, std::string source)
-    : model_(std::move(model)), source_(std::move(source)) {}
+    : model_(std::move(model)),
+      source_(std::move(source)),
+      distance_(std::make_shared<const body::ShapeDistance>(model_)) {}
+
+app::PairwiseDistance BodySpace::perceptual_distance() const {
+  // The hook holds the distance itself, so a session copied into the redo stack stays valid
+  // after the space is replaced.
+  return [distance = distance_](const std::vector<Eigen::VectorXd>& xs) {
+    return distance->pairwise_max_mm(xs);
+  };
+}
+
+Eigen::VectorXd BodySpace::perceptual_scale() const {
+  return distance_->direction_rms_mm();
+}
 
 BodySpace::~BodySpace() = default;
 

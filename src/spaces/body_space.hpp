@@ -8,6 +8,7 @@
 
 #include "app/design_space.hpp"
 #include "body/body_model.hpp"
+#include "body/shape_distance.hpp"
 
 namespace render {
 class BodyRenderer;
@@ -41,12 +42,16 @@ class BodySpace : public app::DesignSpace {
   std::string export_point(const Eigen::VectorXd& x,
                            const std::filesystem::path& path) const override;
 
+  app::PairwiseDistance perceptual_distance() const override;
+  Eigen::VectorXd perceptual_scale() const override;
+
   const body::Model& model() const { return model_; }
 
  private:
   body::Model model_;
   std::string source_;
-  std::shared_ptr<render::BodyRenderer> renderer_;  // made on the GL thread, shared by cells
+  std::shared_ptr<const body::ShapeDistance> distance_;  // shared with the session's hook
+  std::shared_ptr<render::BodyRenderer> renderer_;       // made on the GL thread, shared by cells
 };
 
 }  // namespace spaces

@@ -472,3 +472,39 @@ TEST_CASE("a double-click on a cell is one zoom step, hovering shows the cell", 
   w.frame(p, false);
   CHECK(w.c->session().clicks_on_plane() == 2);
 }
+
+TEST_CASE("the window's body sessions see what the benchmark's simulated person sees",
+          "[gallery]") {
+  // The body space hands its perceptual distance and scale to every session the controller
+  // holds (new, resumed, after a new search), exactly as `simulate --function body` does, so
+  // the benchmark measures the window's behaviour.
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  {
+    GalleryController c(options(session, "body"), &spaces::open_space, 0.0);
+    CHECK(c.session().has_perceptual_distance());
+    const Eigen::VectorXd scale = c.session().search().options().perceptual_scale;
+    REQUIRE(scale.size() == c.session().settings().components);
+    CHECK(scale.minCoeff() > 1.0);  // mm over the range: every component visibly moves
+    // No grid the window shows holds two look-alike cells.
+    const auto cells = c.session().cells();
+    std::vector<Eigen::VectorXd> xs;
+    for (const auto& p : cells) xs.push_back(p.x);
+    const Eigen::MatrixXd d = c.space().perceptual_distance()(xs);
+    double closest = 1e300;
+    for (Eigen::Index i = 0; i < d.rows(); ++i)
+      for (Eigen::Index j = i + 1; j < d.cols(); ++j) closest = std::min(closest, d(i, j));
+    CHECK(closest >= app::kCloneMm);
+    c.queue(intent::ClickCell{1, 1});
+    c.begin_frame(0.0);
+  }
+  app::ControllerOptions resumed = options(session, "body");
+  resumed.resume = app::ResumePolicy::kYes;
+  GalleryController c(resumed, &spaces::open_space, 0.0);
+  CHECK(c.session().clicks_on_plane() == 1);
+  CHECK(c.session().has_perceptual_distance());
+  // The photo space has no such measure: the paper's fixed zoom.
+  c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
+  c.begin_frame(0.1);
+  CHECK_FALSE(c.session().has_perceptual_distance());
+}
