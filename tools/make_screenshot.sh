@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Regenerates the README's window screenshot (docs/screenshot.png): the body gallery on the
+# default model, mid-session (one finished plane, two clicks on the second, a cell hovered),
+# in a real window under Xvfb driven by xdotool.
+#   bash tools/make_screenshot.sh [BUILD_DIR] [OUT.png] [extra gallery options...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+APP=${1:-build}/sequential-gallery
+OUT=${2:-docs/screenshot.png}
+shift 2 2>/dev/null || shift $#
+[[ -x "$APP" ]] || { echo "make_screenshot: $APP not built (bash tools/build.sh)"; exit 1; }
+if [[ -z "${DISPLAY:-}" ]]; then
+  exec xvfb-run -a -s "-screen 0 1280x720x24" bash "$0" "$(dirname "$APP")" "$OUT" "$@"
+fi
+T=$(mktemp -d)
+trap 'kill $PID 2>/dev/null || true; rm -rf "$T"' EXIT
+XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
+  --zoom-seconds 0.4 --report-layout --screenshot "$T/shot.png" "$@" >"$T/log" 2>&1 &
+PID=$!
+for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
+WIN=$(xdotool search --sync --name '^Sequential Gallery$' | head -1)
+sleep 1
+centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
+click() { xdotool mousemove --sync --window "$WIN" $(centre "$1") click 1; sleep 1.2; }
+planes() { /usr/bin/python3 -c "import json; print(len(json.load(open('$T/session.json'))['history']))" 2>/dev/null || echo 0; }
+for c in 5 3 6 2; do click "$c"; done
+for _ in $(seq 600); do [[ "$(planes)" == 1 ]] && break; sleep 0.1; done
+sleep 1.5
+click 7
+click 5
+xdotool mousemove --sync --window "$WIN" $(centre 6)
+sleep 1
+xdotool key F12
+for _ in $(seq 100); do [[ -s "$T/shot.png" ]] && break; sleep 0.1; done
+cp "$T/shot.png" "$OUT"
+echo "wrote $OUT"
