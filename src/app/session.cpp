@@ -7,32 +7,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sps/json_fields.hpp"
+
 namespace app {
 
 namespace {
 
 using nlohmann::json;
 
-// A stored integer, checked before use: a float (1e300 as int is undefined), a string or a
-// value out of range is an error naming the field.
+// A stored integer, checked before use (sps/json_fields.hpp).
 long long integer_from(const json& j, const std::string& what, long long lo, long long hi) {
-  long long v = 0;
-  if (j.is_number_unsigned()) {
-    if (j.get<std::uint64_t>() > static_cast<std::uint64_t>(hi)) {
-      throw std::runtime_error(what + " is " + j.dump() + ", must lie in [" + std::to_string(lo) +
-                               ", " + std::to_string(hi) + "]");
-    }
-    v = static_cast<long long>(j.get<std::uint64_t>());
-  } else if (j.is_number_integer()) {
-    v = j.get<std::int64_t>();
-  } else {
-    throw std::runtime_error(what + " must be an integer, found " + j.dump());
-  }
-  if (v < lo || v > hi) {
-    throw std::runtime_error(what + " is " + std::to_string(v) + ", must lie in [" +
-                             std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return v;
+  return sps::json_fields::integer(j, what, lo, hi);
 }
 
 json vector_json(const Eigen::VectorXd& x) {

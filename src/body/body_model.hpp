@@ -21,9 +21,9 @@ class ModelError : public std::runtime_error {
 };
 
 struct Model {
-  std::string name;             // e.g. "SMPL (neutral)" or the file stem
-  std::string source;           // file path the model came from, or "<embedded neutral>" (female, male)
-  Vertices v_template;          // V x 3
+  std::string name;     // e.g. "SMPL (neutral)" or the file stem
+  std::string source;   // file path the model came from, or "<embedded neutral>" (female, male)
+  Vertices v_template;  // V x 3
   Eigen::MatrixXf shapedirs;    // 3V x K: row 3*v + axis, column = component (only the K kept)
   Faces faces;                  // F x 3, indices < V
   Eigen::MatrixXf j_regressor;  // J x V (dense)

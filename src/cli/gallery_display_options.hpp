@@ -7,8 +7,9 @@
 
 namespace cli {
 
-// Reads --space, --model, --image, --grid, --cell-size, --samples, --animation-samples and --animation-scale
-// into `o`; `default_cell_size` 0 means "fit the window". Throws ArgError with the option name.
+// Reads --space, --model, --image, --grid, --cell-size, --samples, --animation-samples and
+// --animation-scale into `o`; `default_cell_size` 0 means "fit the window". Throws ArgError with
+// the option name.
 void read_gallery_display_options(const ArgParser& args, int default_cell_size,
                                   app::GalleryOptions& o);
 

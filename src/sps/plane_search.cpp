@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sps/expected_improvement.hpp"
+#include "sps/json_fields.hpp"
 #include "sps/plane_construction.hpp"
 
 namespace sps {
@@ -30,38 +31,12 @@ json vec_to_json(const Eigen::VectorXd& v) {
   return json(std::vector<double>(v.data(), v.data() + v.size()));
 }
 
-// Stored numbers are checked before they are used or sized anything: a float where an integer
-// belongs (1e300 converted to int is undefined), out-of-range counts, NaN.
+// Stored numbers are checked before they are used or sized anything (sps/json_fields.hpp).
 long long int_from_json(const json& j, const std::string& what, long long lo, long long hi) {
-  long long v = 0;
-  if (j.is_number_unsigned()) {
-    const auto u = j.get<std::uint64_t>();
-    if (u > static_cast<std::uint64_t>(hi)) {
-      throw std::runtime_error(what + " is " + j.dump() + ", must be at most " +
-                               std::to_string(hi));
-    }
-    v = static_cast<long long>(u);
-  } else if (j.is_number_integer()) {
-    v = j.get<std::int64_t>();
-  } else {
-    throw std::runtime_error(what + " must be an integer, found " + j.dump());
-  }
-  if (v < lo || v > hi) {
-    throw std::runtime_error(what + " is " + std::to_string(v) + ", must lie in [" +
-                             std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return v;
+  return json_fields::integer(j, what, lo, hi);
 }
-
 double double_from_json(const json& j, const std::string& what, double lo, double hi) {
-  if (!j.is_number()) throw std::runtime_error(what + " must be a number, found " + j.dump());
-  const double v = j.get<double>();
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    std::ostringstream range;
-    range << what << " is " << j.dump() << ", must lie in [" << lo << ", " << hi << "]";
-    throw std::runtime_error(range.str());
-  }
-  return v;
+  return json_fields::number(j, what, lo, hi);
 }
 
 // Sizes are checked before the vector is allocated; entries must be finite and within

@@ -6,7 +6,8 @@
 #include "npz_fixtures.hpp"
 #include "util/atomic_file.hpp"
 
-TEST_CASE("atomic writer: names up to NAME_MAX work, and the temporary name always fits", "[atomic]") {
+TEST_CASE("atomic writer: names up to NAME_MAX work, and the temporary name always fits",
+          "[atomic]") {
   const auto dir = fixtures::scratch_dir("atomic-names");
   for (std::size_t length : {5u, 200u, 243u, 244u, 250u, 255u}) {
     INFO("name length " << length);

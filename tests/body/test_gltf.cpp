@@ -131,7 +131,8 @@ const tinygltf::Node& joint_node(const tinygltf::Model& doc, int j) {
 
 }  // namespace
 
-TEST_CASE("gltf: the base mesh is the design, and one morph target per component edits it", "[gltf]") {
+TEST_CASE("gltf: the base mesh is the design, and one morph target per component edits it",
+          "[gltf]") {
   const auto model = cylinder();
   const auto betas = some_betas(10);
   const auto path = fixtures::scratch_dir("gltf-rt") / "body.glb";
