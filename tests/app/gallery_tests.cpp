@@ -65,6 +65,18 @@ double finish_plane(GalleryController& c, double t) {
   return t;
 }
 
+// A headless ImGui context the size of a 1280x720 window, its font atlas built, no ini file.
+void create_test_imgui_context() {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(1280, 720);
+  unsigned char* font = nullptr;
+  int fw = 0, fh = 0;
+  io.Fonts->GetTexDataAsRGBA32(&font, &fw, &fh);
+}
+
 }  // namespace
 
 TEST_CASE("intents change nothing until the next frame starts", "[gallery]") {
@@ -303,14 +315,7 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
           "[gallery][gl]") {
   TempDir dir;
   render::HeadlessContext context;
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;
-  io.DisplaySize = ImVec2(1280, 720);
-  unsigned char* font = nullptr;
-  int fw = 0, fh = 0;
-  io.Fonts->GetTexDataAsRGBA32(&font, &fw, &fh);
+  create_test_imgui_context();
   {
     GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
     app::ViewOptions vo;
@@ -321,7 +326,7 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
       c.begin_frame(t);
       view.update_cells(c, 1280, 720, 1.0f);
       view.draw_cells(c);
-      io.DeltaTime = 1.0f / 60.0f;
+      ImGui::GetIO().DeltaTime = 1.0f / 60.0f;
       ImGui::NewFrame();
       view.build(c, n);
       ImGui::Render();
@@ -410,13 +415,7 @@ struct InProcessWindow {
   long frames = 0;
 
   explicit InProcessWindow(app::ControllerOptions o) {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(1280, 720);
-    unsigned char* font = nullptr;
-    int fw = 0, fh = 0;
-    io.Fonts->GetTexDataAsRGBA32(&font, &fw, &fh);
+    create_test_imgui_context();
     c = std::make_unique<GalleryController>(o, &spaces::open_space, t);
     view = std::make_unique<app::GalleryView>(app::ViewOptions{}, app::UiPrefs{});
   }
