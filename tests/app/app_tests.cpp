@@ -335,6 +335,8 @@ TEST_CASE("saving keeps the last good file when the new one cannot be written",
   const fs::path folder = dir.path / "folder.json";
   fs::create_directories(folder);
   CHECK_THROWS_WITH(app::save_session(session, folder), Catch::Contains("folder.json"));
+  CHECK(fs::is_directory(folder));
+  CHECK(test_support::first_difference(read_text(file), good) == "");  // untouched
   // A model path that is not UTF-8 cannot go into JSON as it is; it is saved with replacement
   // characters instead of failing every autosave.
   app::SessionSettings odd = small_settings();
