@@ -63,7 +63,7 @@ for t in "${targets[@]}"; do
   if [ $rc -ne 0 ]; then
     status=1
     echo "fuzz: FINDING in $t:"
-    grep -E "ERROR|SUMMARY|runtime error|abort|Test unit written" "$log" | head -20
+    grep -m 20 -E "ERROR|SUMMARY|runtime error|abort|Test unit written" "$log" || true
   fi
 done
 echo "fuzz summary:"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Contact sheets of the built-in body models: per model, the mean body and each of the first 10
 # shape components at -3 and +3, front and side views, labelled with the change in height and
-# mass (from `sequential-gallery measure`); and 1000 px close-ups of the mean body's head, hand
-# and knee. Rendered with the project's headless renderer (`sequential-gallery render`, EGL
+# mass (from `sequential-gallery measure`); and 1000 px close-ups of the mean body's head, hand,
+# knees and feet. Rendered with the project's headless renderer (`sequential-gallery render`, EGL
 # surfaceless) and put together with ImageMagick's montage.
 # usage: tools/make_contact_sheet.sh [EXECUTABLE] [MODELS...]   (default: female male neutral)
 # writes docs/default-model-<model>.png and docs/default-model-<model>-closeup.png
@@ -40,7 +40,7 @@ for model in "${models[@]}"; do
             -v m0="$m0" 'BEGIN {printf "c%d %+d (%s)\n%+.1f cm, %+.1f kg", k, s, v,
                                100 * (h - h0), m - m0}')
         fi
-        "$exe" render --model "$model" --betas="$betas" --view "$view" --size 200x330 \
+        "$exe" render --model "$model" --betas="$betas" --view "$view" --size 270x330 \
           -o "$name" >/dev/null
         args+=(-label "$label" "$name")
       done
@@ -50,18 +50,22 @@ for model in "${models[@]}"; do
     "docs/default-model-$model.png"
   echo "wrote docs/default-model-$model.png"
 
-  # Close-ups of the mean body (its height decides where the head is).
+  # Close-ups of the mean body (its height decides where the head, hand, knees and feet are;
+  # the template is 1.70 m with the arms 50 degrees from the vertical).
+  scale=$(awk -v h="$h0" 'BEGIN {print h / 1.7}')
+  at() { awk -v s="$scale" -v v="$1" 'BEGIN {print s * v}'; }
   head_y=$(awk -v h="$h0" 'BEGIN {print h - 0.11}')
   "$exe" render --model "$model" --size 1000x1000 --target 0 "$head_y" 0.02 --distance 0.75 \
     --yaw 30 --pitch 0 -o "$tmp/head.png" >/dev/null
-  hand_y=$(awk -v h="$h0" 'BEGIN {print 0.94 * h / 1.7}')
-  "$exe" render --model "$model" --size 1000x1000 --target 0.6 "$hand_y" 0.02 --distance 0.5 \
-    --yaw 75 --pitch 0 -o "$tmp/hand.png" >/dev/null
-  knee_y=$(awk -v h="$h0" 'BEGIN {print 0.48 * h / 1.7}')
-  "$exe" render --model "$model" --size 1000x1000 --target 0.0 "$knee_y" 0.0 --distance 1.1 \
+  "$exe" render --model "$model" --size 1000x1000 --target "$(at 0.65)" "$(at 0.975)" 0.03 \
+    --distance 0.5 --yaw 60 --pitch 0 -o "$tmp/hand.png" >/dev/null
+  "$exe" render --model "$model" --size 1000x1000 --target 0.0 "$(at 0.46)" 0.0 --distance 1.1 \
     --yaw 25 --pitch 0 -o "$tmp/knee.png" >/dev/null
+  "$exe" render --model "$model" --size 1000x1000 --target 0.0 0.07 0.05 --distance 0.75 \
+    --yaw 35 --pitch 15 -o "$tmp/feet.png" >/dev/null
   montage -label "$model: head" "$tmp/head.png" -label "hand" "$tmp/hand.png" \
-    -label "knees" "$tmp/knee.png" -tile 3x1 -geometry 1000x1000+3+3 -pointsize 20 \
-    -background white "docs/default-model-$model-closeup.png"
+    -label "knees" "$tmp/knee.png" -label "feet" "$tmp/feet.png" -tile 4x1 \
+    -geometry 1000x1000+3+3 -pointsize 20 -background white \
+    "docs/default-model-$model-closeup.png"
   echo "wrote docs/default-model-$model-closeup.png"
 done

@@ -3,6 +3,8 @@
 # default model, mid-session (one finished plane, two clicks on the second, a cell hovered),
 # in a real window under Xvfb driven by xdotool.
 #   bash tools/make_screenshot.sh [BUILD_DIR] [OUT.png] [extra gallery options...]
+# HOVER_CELL=N hovers cell N (1-9) instead of 6. The holds screenshot (docs/screenshot-holds.png):
+#   HOVER_CELL=4 bash tools/make_screenshot.sh build docs/screenshot-holds.png --hold height=1.80 --hold mass=85
 set -euo pipefail
 cd "$(dirname "$0")/.."
 APP=${1:-build}/sequential-gallery
@@ -18,7 +20,8 @@ XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
   --zoom-seconds 0.4 --report-layout --screenshot "$T/shot.png" "$@" >"$T/log" 2>&1 &
 PID=$!
 for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
-WIN=$(xdotool search --sync --name '^Sequential Gallery$' | head -1)
+WIN=$(xdotool search --sync --name '^Sequential Gallery$')
+  WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
 sleep 1
 centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
 click() { xdotool mousemove --sync --window "$WIN" $(centre "$1") click 1; sleep 1.2; }
@@ -28,7 +31,7 @@ for _ in $(seq 600); do [[ "$(planes)" == 1 ]] && break; sleep 0.1; done
 sleep 1.5
 click 7
 click 5
-xdotool mousemove --sync --window "$WIN" $(centre 6)
+xdotool mousemove --sync --window "$WIN" $(centre "${HOVER_CELL:-6}")
 sleep 1
 xdotool key F12
 for _ in $(seq 100); do [[ -s "$T/shot.png" ]] && break; sleep 0.1; done

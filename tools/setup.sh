@@ -23,7 +23,7 @@ missing=()
 for p in "${packages[@]}"; do
   # NodeSource's nodejs bundles npm and conflicts with Debian's npm package.
   [ "$p" = npm ] && command -v npm >/dev/null && continue
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  [[ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" == *"install ok installed"* ]] || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   SUDO=""

@@ -9,12 +9,15 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "app/constraint_projector.hpp"
 #include "app/session.hpp"
 #include "render/camera.hpp"
 
@@ -51,6 +54,24 @@ class CellContent {
   virtual void draw(int width, int height, const CellLook& look) = 0;
 };
 
+// Where a target solve ended (issue 13).
+struct TargetSolve {
+  Eigen::VectorXd x;
+  bool reached = false;
+  std::string message;  // what was reached, or the nearest reachable values
+};
+
+// The window's measurements panel (issue 13): what the view keeps between frames.
+struct MeasurementPanelState {
+  bool imperial = false;
+  std::vector<std::string> target_text;  // typed targets, one per measurement_names()
+};
+// What the user asked for in the panel this frame.
+struct MeasurementPanelRequest {
+  std::optional<std::vector<std::string>> holds;    // the new set of holds (a toggle changed)
+  std::optional<std::vector<std::string>> targets;  // "Go" with these "name=value" targets
+};
+
 class DesignSpace {
  public:
   virtual ~DesignSpace() = default;
@@ -58,6 +79,12 @@ class DesignSpace {
   virtual SpaceSettings settings() const = 0;
   // One line for the window: "body: default model, 10 components".
   virtual std::string description() const = 0;
+  // What the search is on, in a few words, for the toolbar: "female (built-in)", "me.npz".
+  virtual std::string source_label() const {
+    const std::string source = settings().source;
+    return source.empty() ? std::string("built-in")
+                          : std::filesystem::path(source).filename().string();
+  }
   int dimensions() const { return settings().dimensions; }
   virtual std::string dimension_name(int i) const = 0;
   // The paper's choices: 3x3 for bodies, 5x5 for photos.
@@ -92,6 +119,34 @@ class DesignSpace {
   // measure (the session then zooms by the paper's fixed factor).
   virtual PairwiseDistance perceptual_distance() const { return {}; }
   virtual Eigen::VectorXd perceptual_scale() const { return {}; }
+
+  // Measurement targets and holds (issue 13). Names that may be held or solved for (a
+  // body's "height", "mass", ...; none for a photo).
+  virtual std::vector<std::string> measurement_names() const { return {}; }
+  // Holds "name" or "name=value" (the value in SI or with a unit, "180cm"; a bare name holds
+  // the value of the body at `reference`). Throws std::invalid_argument with a message for
+  // the user (unknown name, bad value, a measurement this model lacks).
+  virtual std::shared_ptr<const ConstraintProjector> hold_projector(
+      const std::vector<std::string>& /*holds*/, const Eigen::VectorXd& /*reference*/) const {
+    throw std::invalid_argument("this design space has no measurements to hold");
+  }
+  // The point nearest to `start` meeting "name=value" targets (smallest change of x).
+  // Throws std::invalid_argument as hold_projector() does.
+  virtual TargetSolve solve_targets(const std::vector<std::string>& /*targets*/,
+                                    const Eigen::VectorXd& /*start*/) const {
+    throw std::invalid_argument("this design space has no measurements to aim for");
+  }
+
+  // ImGui: the measurements panel, one row per measurement: the current best, the start and
+  // the hovered cell (each may be null), a hold toggle (`holds`: those in force, as given to
+  // hold_projector) and a target field with "Go". Spaces without measurements draw nothing.
+  virtual MeasurementPanelRequest draw_measurement_panel(const PreparedCell* /*best*/,
+                                                         const PreparedCell* /*start*/,
+                                                         const PreparedCell* /*hovered*/,
+                                                         const std::vector<std::string>& /*holds*/,
+                                                         MeasurementPanelState& /*state*/) const {
+    return {};
+  }
 
   // Export: the file a point becomes (glTF for bodies, an image and its parameters for photos).
   virtual std::string default_export_name() const = 0;  // "body.glb"

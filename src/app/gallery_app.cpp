@@ -59,6 +59,11 @@ class GalleryWindow {
   void benchmark_step();
   void benchmark_report();
   double now() const { return seconds_since(start_); }
+  UiPrefs current_prefs() const {
+    UiPrefs prefs = view_->prefs();
+    glfwGetWindowSize(window_, &prefs.window_width, &prefs.window_height);
+    return prefs;
+  }
 
   static void on_drop(GLFWwindow* window, int count, const char** paths);
   static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -70,6 +75,7 @@ class GalleryWindow {
   std::unique_ptr<GalleryController> controller_;
   std::unique_ptr<GalleryView> view_;
   fs::path prefs_path_;
+  std::optional<UiPrefsSaver> prefs_saver_;
 
   std::vector<KeyPress> key_presses_;
   std::string pending_drop_;
@@ -264,17 +270,20 @@ void GalleryWindow::benchmark_step() {
 }
 
 int GalleryWindow::run() {
-  try {
-    controller_ = std::make_unique<GalleryController>(controller_options(options_),
-                                                      &spaces::open_space, now());
-  } catch (const std::exception& e) {
-    std::cerr << "sequential-gallery: " << e.what() << "\n";
-    return 1;
-  }
   UiPrefs prefs;
   if (options_.remember_ui && !options_.session_path.empty()) {
     prefs_path_ = ui_prefs_path(options_.session_path);
     prefs = load_ui_prefs(prefs_path_);
+  }
+  try {
+    // A benchmark measures the model it was given (or the default), whatever was chosen before.
+    controller_ = std::make_unique<GalleryController>(options_.benchmark_clicks > 0
+                                                          ? controller_options(options_)
+                                                          : controller_options(options_, prefs),
+                                                      &spaces::open_space, now());
+  } catch (const std::exception& e) {
+    std::cerr << "sequential-gallery: " << e.what() << "\n";
+    return 1;
   }
   if (options_.view) {
     prefs.view_preset = *options_.view == render::ViewPreset::kFront  ? 0
@@ -296,6 +305,9 @@ int GalleryWindow::run() {
   vo.report_layout = options_.report_layout;
   vo.file_dialog = options_.file_dialog;
   view_ = std::make_unique<GalleryView>(vo, prefs);
+  if (!prefs_path_.empty() && options_.benchmark_clicks == 0) {
+    prefs_saver_.emplace(prefs_path_, load_ui_prefs(prefs_path_));
+  }
 
   Clock::time_point last_frame_start = Clock::now();
   bool previous_frame_zoomed = false;
@@ -371,6 +383,7 @@ int GalleryWindow::run() {
       if (options_.quit_after_screenshot) quit_ = true;
     }
     glfwSwapBuffers(window_);
+    if (prefs_saver_) prefs_saver_->update(current_prefs(), now());
     if (previous_frame_zoomed && options_.benchmark_breakdown) {
       glFinish();
       present_ms_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t2).count());
@@ -378,11 +391,7 @@ int GalleryWindow::run() {
     }
   }
   controller_->save_now();
-  if (!prefs_path_.empty() && options_.benchmark_clicks == 0) {
-    UiPrefs prefs = view_->prefs();
-    glfwGetWindowSize(window_, &prefs.window_width, &prefs.window_height);
-    save_ui_prefs(prefs, prefs_path_);
-  }
+  if (prefs_saver_) prefs_saver_->flush(current_prefs());
   return 0;
 }
 
@@ -400,6 +409,14 @@ ControllerOptions controller_options(const GalleryOptions& o) {
   c.resume = o.resume;
   c.zoom_seconds = o.zoom_seconds;
   c.optimizer_delay_ms = o.optimizer_delay_ms;
+  c.targets = o.targets;
+  c.holds = o.holds;
+  return c;
+}
+
+ControllerOptions controller_options(const GalleryOptions& o, const UiPrefs& prefs) {
+  ControllerOptions c = controller_options(o);
+  if (o.space == "body" && !o.source) c.space.source = prefs.body_model;
   return c;
 }
 

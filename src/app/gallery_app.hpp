@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/gallery_controller.hpp"
+#include "app/ui_prefs.hpp"
 #include "render/camera.hpp"
 
 namespace app {
@@ -24,6 +25,8 @@ struct GalleryOptions {
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file
   ResumePolicy resume = ResumePolicy::kAsk;
+  std::vector<std::string> targets;  // --target name=value: start at the nearest such body
+  std::vector<std::string> holds;    // --hold name[=value]: held in every cell
 
   int window_width = 0;  // 0 = as last time (else 1600x1000)
   int window_height = 0;
@@ -52,6 +55,9 @@ struct GalleryOptions {
 
 // The controller options a window with `options` starts with (also used by the tests).
 ControllerOptions controller_options(const GalleryOptions& options);
+// The same for a window that remembers `prefs`: a body search without --model starts on the
+// body model chosen last time in the New-search panel.
+ControllerOptions controller_options(const GalleryOptions& options, const UiPrefs& prefs);
 
 // Runs the window until it is closed; returns the process exit code.
 int run_gallery(const GalleryOptions& options);

@@ -36,6 +36,15 @@ SpaceSettings space_of(const SessionSettings& s) {
   return SpaceSettings{s.space, s.model_path, s.components};
 }
 
+// A body model with fewer components than asked for explores all it has; say so rather than
+// searching fewer dimensions without a word.
+std::string fewer_dimensions_note(const SpaceSettings& asked, const DesignSpace& space) {
+  if (asked.kind != space.settings().kind || space.dimensions() >= asked.dimensions) return "";
+  return space.source_label() + " has only " + std::to_string(space.dimensions()) +
+         " components: exploring " + std::to_string(space.dimensions()) + ", not the " +
+         std::to_string(asked.dimensions) + " asked for";
+}
+
 bool same_plane(const sps::Plane& a, const sps::Plane& b) {
   return a.c.size() == b.c.size() && a.c == b.c && a.u == b.u && a.v == b.v;
 }
@@ -52,6 +61,9 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
     say(MessageKind::kError, std::string(e.what()) + " (showing the default instead)");
     options_.space.source.clear();
     space_ = opener_(options_.space);
+  }
+  if (const std::string note = fewer_dimensions_note(options_.space, *space_); !note.empty()) {
+    say(MessageKind::kError, note);
   }
   options_.space = space_->settings();
   const int grid = options_.grid_size > 0 ? options_.grid_size : space_->default_grid_size();
@@ -95,6 +107,10 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
       }
     }
   }
+  // Command-line targets, then holds: applied at the first frame that may (after the resume
+  // question; a target's point goes through the optimizer before the holds are built).
+  if (!options_.targets.empty()) deferred_.push_back(intent::GoToTargets{options_.targets});
+  if (!options_.holds.empty()) deferred_.push_back(intent::SetHolds{options_.holds});
   displayed_view_ = session_->view();
   update_display();
 }
@@ -130,6 +146,11 @@ std::string GalleryController::resume_description() const {
 void GalleryController::begin_frame(double now_seconds) {
   now_ = now_seconds;
   poll_worker();
+  if (!deferred_.empty() && !busy() && !worker_.busy() && !pending_resume_) {
+    // One at a time: a target's point is submitted to the optimizer before the next applies.
+    queue_.push_front(deferred_.front());
+    deferred_.erase(deferred_.begin());
+  }
   while (!queue_.empty()) {
     const Intent next = std::move(queue_.front());
     queue_.pop_front();
@@ -170,6 +191,8 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::Resume&) { resume(); }, [&](const intent::StartNew&) { start_new(); },
           [&](const intent::Export& e) { export_point(e.path); },
           [&](const intent::UsePoint& u) { use_point(u.x); },
+          [&](const intent::SetHolds& h) { set_holds(h.holds); },
+          [&](const intent::GoToTargets& t) { go_to_targets(t.targets); },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
                              ? n.history_index
@@ -280,11 +303,18 @@ void GalleryController::open(const intent::Open& o) {
         session_settings(space->settings(), grid, o.zoom_levels, session_->settings().seed + 1));
     if (has_progress()) keep_old_session_file("");
     const std::string what = space->description();
+    const std::string note = fewer_dimensions_note(o.space, *space);
     adopt(std::move(fresh), std::move(space));
     autosave();
-    say(MessageKind::kSuccess, "opened " + what + "; new search started");
+    if (note.empty()) {
+      say(MessageKind::kSuccess, "opened " + what + "; new search started");
+    } else {
+      say(MessageKind::kError, "new search started; " + note);
+    }
   } catch (const std::exception& e) {
-    say(MessageKind::kError, std::string("cannot open: ") + e.what());
+    // The space is opened before anything else changes: the current search goes on as it was.
+    say(MessageKind::kError,
+        std::string("cannot open ") + e.what() + " -- the current search is unchanged");
   }
 }
 
@@ -313,6 +343,7 @@ void GalleryController::use_point(const Eigen::VectorXd& x) {
   const Eigen::VectorXd previous_best = session_->current_best();
   Submission submission;
   submission.chosen = x;
+  submission.set_directly = true;
   if ((x - previous_best).norm() > 1e-9) submission.extra_comparisons.push_back({x, previous_best});
   redo_.clear();
   ++generation_;
@@ -321,6 +352,65 @@ void GalleryController::use_point(const Eigen::VectorXd& x) {
                 std::chrono::milliseconds(options_.optimizer_delay_ms));
   submitted_generation_ = generation_;
   say(MessageKind::kInfo, "the slider values are submitted as your choice; computing...");
+}
+
+std::string GalleryController::holds_description() const {
+  const auto* projector = session_->constraint_projector();
+  return projector != nullptr ? projector->description() : "";
+}
+
+// Holds change what the grid shows, not the preference data: the session keeps its search and
+// only builds its planes and cells through the projector (Session::set_constraint_projector).
+void GalleryController::set_holds(const std::vector<std::string>& holds) {
+  if (busy() || worker_.busy()) {
+    // After the optimizer's result is in (begin_frame): never discard it.
+    deferred_.push_back(intent::SetHolds{holds});
+    return;
+  }
+  std::shared_ptr<const ConstraintProjector> projector;
+  if (!holds.empty()) {
+    try {
+      projector = space_->hold_projector(holds, session_->current_best());
+    } catch (const std::exception& e) {
+      say(MessageKind::kError, std::string("cannot hold that: ") + e.what());
+      return;
+    }
+  }
+  session_->set_constraint_projector(projector);
+  holds_ = projector ? holds : std::vector<std::string>{};
+  redo_.clear();  // redo copies were made under other holds
+  ++generation_;
+  animation_ = Animation::kNone;
+  morph_from_.clear();
+  displayed_view_ = session_->view();
+  update_display();
+  say(MessageKind::kInfo, projector ? "holding " + projector->description() + " in every cell"
+                                    : "holds released; all your choices are kept");
+}
+
+void GalleryController::go_to_targets(const std::vector<std::string>& targets) {
+  if (busy() || worker_.busy()) {
+    // After the optimizer's result is in (begin_frame): never discard it.
+    deferred_.push_back(intent::GoToTargets{targets});
+    return;
+  }
+  if (targets.empty()) {
+    say(MessageKind::kError, "type a value for at least one measurement, then Go");
+    return;
+  }
+  TargetSolve solved;
+  try {
+    solved = space_->solve_targets(targets, session_->current_best());
+  } catch (const std::exception& e) {
+    say(MessageKind::kError, e.what());
+    return;
+  }
+  if (!solved.reached) {
+    say(MessageKind::kError, solved.message);
+    return;
+  }
+  use_point(solved.x);
+  say(MessageKind::kInfo, "targets " + solved.message + "; computing the next plane...");
 }
 
 void GalleryController::export_point(const fs::path& path) {
@@ -365,6 +455,18 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
   }
   session_ = std::move(session);
   install_perception();
+  holds_.clear();
+  // A resumed session's holds are held again at the first frame that may (before any from the
+  // command line, which then replace them); the space checks them like typed ones.
+  if (!session_->saved_holds().empty()) {
+    std::vector<std::string> holds;
+    for (const auto& h : session_->saved_holds()) {
+      char value[64];
+      std::snprintf(value, sizeof value, "%.17g", h.value);
+      holds.push_back(h.name + "=" + value);
+    }
+    deferred_.insert(deferred_.begin(), intent::SetHolds{std::move(holds)});
+  }
   redo_.clear();
   ++generation_;
   inspected_ = -1;
@@ -475,13 +577,17 @@ void GalleryController::update_display() {
     alpha = t * t * (3.0 - 2.0 * t);  // ease in and out
     if (t >= 1.0) animation_ = Animation::kNone;
   }
+  const bool held = session_->constraint_projector() != nullptr;
   if (animation_ == Animation::kZoom) {
     displayed_view_ = sps::interpolate_views(view_from_, view_to_, alpha);
-    displayed_ = sps::grid_points(plane, n, displayed_view_);
+    // Holds: between two grids the held plane itself (first-order held); the grid the
+    // animation ends on is projected.
+    displayed_ = sps::grid_points(held ? session_->shown_plane() : plane, n, displayed_view_);
     return;
   }
   displayed_view_ = session_->view();
-  displayed_ = sps::grid_points(plane, n, displayed_view_);
+  displayed_ =
+      held ? session_->cells_at(displayed_view_) : sps::grid_points(plane, n, displayed_view_);
   if (animation_ == Animation::kMorph && morph_from_.size() == displayed_.size()) {
     for (std::size_t i = 0; i < displayed_.size(); ++i) {
       if (morph_from_[i].size() == displayed_[i].x.size()) {

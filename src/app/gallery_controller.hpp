@@ -40,6 +40,9 @@ struct ControllerOptions {
   double morph_seconds = 0.6;
   int optimizer_delay_ms = 0;  // testing: hold each optimizer run back
   bool log = true;             // messages also go to stdout / stderr
+  // Issue 13, from the command line: "name=value" targets to go to first, then holds.
+  std::vector<std::string> targets;
+  std::vector<std::string> holds;
 };
 
 // Opens a design space (loads a model, an image...); throws with a readable message.
@@ -72,11 +75,22 @@ struct Inspect {
 struct UsePoint {
   Eigen::VectorXd x;
 };
+// Holds (issue 13): the whole set, each "name" (held at the current best's value) or
+// "name=value"; empty releases them (the preference data stay).
+struct SetHolds {
+  std::vector<std::string> holds;
+};
+// "Go": the point nearest to the current best meeting "name=value" targets becomes the current
+// best (as UsePoint), or the message says which targets are out of reach.
+struct GoToTargets {
+  std::vector<std::string> targets;
+};
 }  // namespace intent
 
-using Intent = std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
-                            intent::StartOver, intent::Open, intent::Resume, intent::StartNew,
-                            intent::Export, intent::Inspect, intent::UsePoint>;
+using Intent =
+    std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
+                 intent::StartOver, intent::Open, intent::Resume, intent::StartNew, intent::Export,
+                 intent::Inspect, intent::UsePoint, intent::SetHolds, intent::GoToTargets>;
 
 enum class MessageKind { kInfo, kSuccess, kError };
 struct Message {
@@ -139,6 +153,9 @@ class GalleryController {
   const std::filesystem::path& last_export() const { return last_export_; }
   double last_submit_seconds() const { return last_submit_seconds_; }
   int ignored_clicks() const { return ignored_clicks_; }  // clicks dropped while animating
+  // The holds in force (as the SetHolds intent gave them) and what they hold, in words.
+  const std::vector<std::string>& holds() const { return holds_; }
+  std::string holds_description() const;
   const ControllerOptions& options() const { return options_; }
 
  private:
@@ -155,6 +172,8 @@ class GalleryController {
   void start_new();
   void export_point(const std::filesystem::path& path);
   void use_point(const Eigen::VectorXd& x);
+  void set_holds(const std::vector<std::string>& holds);
+  void go_to_targets(const std::vector<std::string>& targets);
 
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
   // The space's perceptual hooks on `session_` (never saved, so after every load too).
@@ -190,6 +209,8 @@ class GalleryController {
   std::filesystem::path last_export_;
   int inspected_ = -1;
   int ignored_clicks_ = 0;
+  std::vector<std::string> holds_;
+  std::vector<Intent> deferred_;  // holds and targets asked for while the optimizer ran
 
   double now_ = 0.0;
   Animation animation_ = Animation::kNone;

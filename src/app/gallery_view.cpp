@@ -6,11 +6,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
+#include "spaces/space_factory.hpp"
 #include "sps/plane_search.hpp"
 
 namespace app {
@@ -69,10 +71,34 @@ std::optional<std::string> run_dialog(const std::string& command) {
   return out;
 }
 
+bool is_builtin_body_model(const std::string& name) {
+  const auto& names = spaces::builtin_body_models();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return ext;
+}
+
+// "on the female model", "on my_model.npz", "on the photo beach.jpg": for the question.
+std::string what_is_opened(const SpaceSettings& s) {
+  const std::string file = fs::path(s.source).filename().string();
+  if (s.kind == "body") {
+    if (s.source.empty()) return "on the neutral model";
+    return is_builtin_body_model(s.source) ? "on the " + s.source + " model" : "on " + file;
+  }
+  return s.source.empty() ? "on the built-in photo" : "on the photo " + file;
+}
+
 }  // namespace
 
 GalleryView::GalleryView(ViewOptions options, UiPrefs prefs)
     : options_(std::move(options)), prefs_(std::move(prefs)) {
+  open_model_file_ = prefs_.body_model_file;
+  select_model_source(prefs_.body_model);
   set_preset(std::clamp(prefs_.view_preset, 0, 2));
   save_path_ = options_.save_path;
   if (save_path_.empty() && !prefs_.save_name.empty()) {
@@ -116,7 +142,18 @@ void GalleryView::sync_space(GalleryController& c) {
   space_generation_ = c.space_generation();
   const SpaceSettings s = c.space().settings();
   open_kind_ = s.kind;
-  open_source_ = s.source;
+  open_source_ = s.kind == "body" ? std::string() : s.source;
+  if (s.kind == "body") {
+    // A body search this view started has opened: its model is the one to start with next
+    // time. (A session resumed or a --model given on the command line is not a choice made
+    // here, and a file that failed to load never gets this far.)
+    if (requested_model_ && *requested_model_ == s.source) {
+      prefs_.body_model = s.source.empty() ? "neutral" : s.source;
+      if (!is_builtin_body_model(prefs_.body_model)) prefs_.body_model_file = s.source;
+    }
+    select_model_source(s.source);
+  }
+  requested_model_.reset();
   open_dims_ = s.dimensions;
   open_grid_ = c.session().settings().grid_size;
   open_zoom_ = c.session().settings().zoom_levels;
@@ -257,6 +294,13 @@ void GalleryView::draw_toolbar(GalleryController& c) {
   ImGui::Text("Plane %d   click %d of %d", c.session().planes_done() + 1,
               std::min(c.session().clicks_on_plane() + (c.busy() ? 0 : 1), s.zoom_levels),
               s.zoom_levels);
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  ImGui::Text("%s: %s", c.space().uses_camera() ? "Model" : "Photo",
+              c.space().source_label().c_str());
+  note_widget("toolbar:model");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.space().description().c_str());
 }
 
 void GalleryView::draw_messages(const GalleryController& c) {
@@ -415,6 +459,10 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();
+  // The body the search began with, as it was (not projected onto any holds in force): holds
+  // shape what the grid shows from now on; the start is the reference the user compares with
+  // (the measurements panel's "start" column reads its own values, e.g. the height before it
+  // was held at another).
   ImGui::TextUnformatted("Started from");
   if (start_.fbo.texture() != 0) {
     ImGui::Image(texture_id(start_.fbo.texture()), size, ImVec2(0, 1), ImVec2(1, 0));
@@ -423,7 +471,21 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   }
   ImGui::EndGroup();
   if (inspecting && ImGui::Button("Back to current best")) c.queue(intent::Inspect{-1});
-  if (shown.prepared && start_.prepared) {
+  if (!c.space().measurement_names().empty()) {
+    // Issue 13: measurements of the current best, the start and the hovered cell, holds and
+    // targets. The panel only asks; the controller applies between frames.
+    if (ImGui::CollapsingHeader("Measurements", ImGuiTreeNodeFlags_DefaultOpen)) {
+      const PreparedCell* hovered = hovered_ >= 0 ? hover_details_.get() : nullptr;
+      const auto request = c.space().draw_measurement_panel(
+          shown.prepared.get(), start_.prepared.get(), hovered, c.holds(), measurement_panel_);
+      if (request.holds) c.queue(intent::SetHolds{*request.holds});
+      if (request.targets) c.queue(intent::GoToTargets{*request.targets});
+      if (!c.holds().empty()) {
+        ImGui::TextColored(ImVec4(0.55f, 0.8f, 1.0f, 1.0f), "Held in every cell: %s",
+                           c.holds_description().c_str());
+      }
+    }
+  } else if (shown.prepared && start_.prepared) {
     c.space().draw_inspector(*shown.prepared, inspecting ? "chosen" : "current",
                              start_.prepared.get(), "start");
   }
@@ -522,11 +584,12 @@ void GalleryView::draw_save(GalleryController& c) {
 void GalleryView::draw_open(GalleryController& c) {
   ImGui::SetNextItemOpen(prefs_.open_panel, ImGuiCond_Once);
   prefs_.open_panel = ImGui::CollapsingHeader("New search: another model, image or grid");
+  note_widget("panel:new-search");
   if (!prefs_.open_panel) return;
   ImGui::TextUnformatted("Design:");
   ImGui::SameLine();
   if (ImGui::RadioButton("body shape", open_kind_ == "body")) {
-    if (open_kind_ != "body") open_source_.clear(), open_dims_ = 10, open_grid_ = 3;
+    if (open_kind_ != "body") open_dims_ = 10, open_grid_ = 3;
     open_kind_ = "body";
   }
   ImGui::SameLine();
@@ -534,15 +597,15 @@ void GalleryView::draw_open(GalleryController& c) {
     if (open_kind_ != "photo") open_source_.clear(), open_dims_ = 12, open_grid_ = 5;
     open_kind_ = "photo";
   }
-  ImGui::TextUnformatted(open_kind_ == "body"
-                             ? "Body model (.npz; empty = built-in; or drop a file here)"
-                             : "Photo (.png/.jpg; empty = built-in; or drop a file here)");
-  ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 8.0f));
-  ImGui::InputText("##source", &open_source_);
   if (open_kind_ == "body") {
+    draw_model_picker();
     ImGui::SetNextItemWidth(120);
     ImGui::InputInt("components", &open_dims_);
     open_dims_ = std::clamp(open_dims_, 1, sps::kMaxSearchDims);
+  } else {
+    ImGui::TextUnformatted("Photo (.png/.jpg; empty = built-in; or drop a file here)");
+    ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 8.0f));
+    ImGui::InputText("##source", &open_source_);
   }
   ImGui::TextUnformatted("Grid");
   ImGui::SameLine();
@@ -553,17 +616,106 @@ void GalleryView::draw_open(GalleryController& c) {
   ImGui::SetNextItemWidth(100);
   ImGui::InputInt("clicks/plane", &open_zoom_);
   open_zoom_ = std::clamp(open_zoom_, 1, 8);
-  ImGui::BeginDisabled(c.busy());
-  if (ImGui::Button("Open / apply (starts a new search)")) {
-    intent::Open o{SpaceSettings{open_kind_, open_source_, open_kind_ == "body" ? open_dims_ : 12},
-                   open_grid_, open_zoom_};
-    if (c.has_progress()) {
-      confirm_open_ = o;  // ask first: a search is work
-    } else {
-      c.queue(o);
-    }
-  }
+  const bool no_file = open_kind_ == "body" && open_model_ == "file" && open_model_file_.empty();
+  ImGui::BeginDisabled(c.busy() || no_file);
+  if (ImGui::Button("Open / apply (starts a new search)")) start_new_search(c);
+  note_widget("new-search");
   ImGui::EndDisabled();
+}
+
+// Neutral / Female / Male / File...: the built-in models by name, or a model file chosen with
+// the file dialog (or typed, or dropped on the window).
+void GalleryView::draw_model_picker() {
+  ImGui::TextUnformatted("Body model:");
+  for (const std::string& name : spaces::builtin_body_models()) {
+    std::string label = name;
+    if (!label.empty())
+      label[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(label[0])));
+    ImGui::SameLine();
+    if (ImGui::RadioButton(label.c_str(), open_model_ == name)) choose_model(name);
+    note_widget("model:" + name);
+  }
+  ImGui::SameLine();
+  if (ImGui::RadioButton("File...", open_model_ == "file")) choose_model("file");
+  note_widget("model:file");
+  if (open_model_ != "file") return;
+  ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 90.0f));
+  ImGui::InputTextWithHint("##modelfile", "model .npz", &open_model_file_);
+  ImGui::SameLine();
+  if (ImGui::Button("Browse...")) open_model_dialog();
+  note_widget("model:browse");
+  std::error_code ec;
+  if (open_model_file_.empty()) {
+    ImGui::TextDisabled("Choose an SMPL-layout .npz (an SMPL .pkl: convert it first, see README)");
+  } else if (!fs::exists(open_model_file_, ec)) {
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "No such file");
+  }
+}
+
+void GalleryView::select_model_source(const std::string& source) {
+  if (source.empty()) {
+    open_model_ = "neutral";
+  } else if (is_builtin_body_model(source)) {
+    open_model_ = source;
+  } else {
+    open_model_ = "file";
+    open_model_file_ = source;
+  }
+}
+
+void GalleryView::choose_model(const std::string& choice) {
+  if (choice == "file") {
+    open_model_ = "file";
+    if (open_model_file_.empty()) open_model_dialog();
+    return;
+  }
+  if (is_builtin_body_model(choice)) open_model_ = choice;
+}
+
+void GalleryView::set_model_file(const std::string& path) {
+  open_model_ = "file";
+  open_model_file_ = path;
+}
+
+void GalleryView::start_new_search(GalleryController& c) {
+  SpaceSettings space{open_kind_, open_source_, open_kind_ == "body" ? open_dims_ : 12};
+  if (open_kind_ == "body") {
+    if (open_model_ == "file") {
+      if (open_model_file_.empty()) return;
+      // The session and the prefs keep the file wherever the program is started from next.
+      std::error_code ec;
+      const fs::path absolute = fs::absolute(open_model_file_, ec);
+      space.source = ec ? open_model_file_ : absolute.lexically_normal().string();
+    } else {
+      space.source = open_model_;
+    }
+    requested_model_ = space.source;
+  }
+  const intent::Open o{space, open_grid_, open_zoom_};
+  if (c.has_progress()) {
+    confirm_open_ = o;  // ask first: a search is work
+  } else {
+    c.queue(o);
+  }
+}
+
+std::optional<LayoutRect> GalleryView::widget(const std::string& name) const {
+  const auto it = widgets_.find(name);
+  if (it == widgets_.end()) return std::nullopt;
+  return it->second;
+}
+
+// Remembers where the last item was drawn (and prints it for scripted tests when it moves).
+void GalleryView::note_widget(const std::string& name) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  const LayoutRect r{a.x, a.y, b.x - a.x, b.y - a.y};
+  LayoutRect& known = widgets_[name];
+  const bool moved = known.x != r.x || known.y != r.y || known.w != r.w || known.h != r.h;
+  known = r;
+  if (moved && options_.report_layout) {
+    std::cout << "[layout] widget " << name << " " << r.x << " " << r.y << " " << r.w << " " << r.h
+              << std::endl;
+  }
 }
 
 void GalleryView::draw_modals(GalleryController& c) {
@@ -607,18 +759,22 @@ void GalleryView::draw_modals(GalleryController& c) {
     if (ImGui::BeginPopupModal("Start a new search?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::Text("The current search has %d finished plane(s) and %d click(s).",
                   c.session().planes_done(), c.session().clicks_on_plane());
-      ImGui::Text("A new search replaces it; its session file is kept as %s.previous.",
+      ImGui::Text("A new search %s replaces it; its session file is kept as %s.previous.",
+                  what_is_opened(confirm_open_->space).c_str(),
                   c.session_path().filename().string().c_str());
       if (ImGui::Button("Start the new search", ImVec2(200, 0))) {
         c.queue(*confirm_open_);
         confirm_open_.reset();
         ImGui::CloseCurrentPopup();
       }
+      note_widget("confirm:start");
       ImGui::SameLine();
       if (ImGui::Button("Keep searching", ImVec2(160, 0))) {
         confirm_open_.reset();
+        requested_model_.reset();
         ImGui::CloseCurrentPopup();
       }
+      note_widget("confirm:keep");
       ImGui::EndPopup();
     }
   }
@@ -643,14 +799,16 @@ void GalleryView::draw_modals(GalleryController& c) {
   if (browser_result_) {
     const fs::path chosen = *browser_result_;
     browser_result_.reset();
-    request_export(c, chosen);
+    file_chosen(c, chosen);
   }
 }
 
 void GalleryView::draw_file_browser() {
-  if (!ImGui::IsPopupOpen("Save as")) ImGui::OpenPopup("Save as");
+  const bool saving = dialog_purpose_ == DialogPurpose::kSave;
+  const char* title = saving ? "Save as" : "Open a body model";
+  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
-  if (!ImGui::BeginPopupModal("Save as", nullptr)) return;
+  if (!ImGui::BeginPopupModal(title, nullptr)) return;
   ImGui::TextUnformatted("Folder:");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
@@ -664,7 +822,14 @@ void GalleryView::draw_file_browser() {
   std::vector<fs::directory_entry> entries;
   for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
        !ec && it != end; it.increment(ec)) {
-    if (it->path().filename().string().rfind('.', 0) != 0) entries.push_back(*it);
+    if (it->path().filename().string().rfind('.', 0) == 0) continue;
+    std::error_code e1;
+    // Opening a model: folders and model files only (.pkl too, to say how to convert it).
+    if (!saving && !it->is_directory(e1) && lower_extension(it->path()) != ".npz" &&
+        lower_extension(it->path()) != ".pkl") {
+      continue;
+    }
+    entries.push_back(*it);
   }
   std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
     std::error_code e1, e2;
@@ -689,11 +854,13 @@ void GalleryView::draw_file_browser() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##name", &browser_name_);
-  if (ImGui::Button("Save", ImVec2(120, 0)) && !browser_name_.empty()) {
+  note_widget("browser:name");
+  if (ImGui::Button(saving ? "Save" : "Open", ImVec2(120, 0)) && !browser_name_.empty()) {
     browser_result_ = dir / browser_name_;
     browser_open_ = false;
     ImGui::CloseCurrentPopup();
   }
+  note_widget("browser:ok");
   ImGui::SameLine();
   if (ImGui::Button("Cancel", ImVec2(120, 0))) {
     browser_open_ = false;
@@ -703,28 +870,60 @@ void GalleryView::draw_file_browser() {
 }
 
 void GalleryView::open_save_dialog(GalleryController& c) {
-  if (desktop_dialog_.valid()) return;  // one is open already
+  if (desktop_dialog_.valid() || browser_open_) return;  // one is open already
+  dialog_purpose_ = DialogPurpose::kSave;
   const fs::path current =
       save_path_.empty() ? fs::path(c.space().default_export_name()) : fs::path(save_path_);
   std::error_code ec;
   const fs::path folder = current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
+  open_file_dialog(folder, current.filename().string());
+}
+
+void GalleryView::open_model_dialog() {
+  if (desktop_dialog_.valid() || browser_open_) return;
+  dialog_purpose_ = DialogPurpose::kOpenModel;
+  const fs::path current(open_model_file_);
+  std::error_code ec;
+  const fs::path folder = current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
+  open_file_dialog(folder, current.filename().string());
+}
+
+// The desktop's dialog (zenity, kdialog) when there is one and it is wanted, else the in-app
+// browser; for saving or for opening a body model, per dialog_purpose_.
+void GalleryView::open_file_dialog(const fs::path& folder, const std::string& name) {
+  const bool saving = dialog_purpose_ == DialogPurpose::kSave;
   if (options_.file_dialog != "builtin") {
+    const std::string start = shell_quote((folder / name).string());
     std::string command;
     if (const std::string zenity = find_program("zenity"); !zenity.empty()) {
-      command = shell_quote(zenity) + " --file-selection --save --title='Save' --filename=" +
-                shell_quote((folder / current.filename()).string()) + " 2>/dev/null";
+      command = shell_quote(zenity) + " --file-selection " +
+                (saving ? std::string("--save --title='Save'")
+                        : std::string("--title='Choose a body model' --file-filter='Body models "
+                                      "(.npz) | *.npz' --file-filter='All files | *'")) +
+                " --filename=" + start + " 2>/dev/null";
     } else if (const std::string kdialog = find_program("kdialog"); !kdialog.empty()) {
-      command = shell_quote(kdialog) + " --getsavefilename " +
-                shell_quote((folder / current.filename()).string()) + " 2>/dev/null";
+      command = shell_quote(kdialog) +
+                (saving ? " --getsavefilename " + start
+                        : " --getopenfilename " + start + " '*.npz|Body models (.npz)'") +
+                " 2>/dev/null";
     }
     if (!command.empty()) {
       desktop_dialog_ = std::async(std::launch::async, [command] { return run_dialog(command); });
       return;
     }
   }
+  std::error_code ec;
   browser_dir_ = fs::absolute(folder, ec).string();
-  browser_name_ = current.filename().string();
+  browser_name_ = name;
   browser_open_ = true;
+}
+
+void GalleryView::file_chosen(GalleryController& c, const fs::path& path) {
+  if (dialog_purpose_ == DialogPurpose::kSave) {
+    request_export(c, path);
+  } else {
+    set_model_file(path.string());
+  }
 }
 
 void GalleryView::poll_desktop_dialog(GalleryController& c) {
@@ -732,7 +931,7 @@ void GalleryView::poll_desktop_dialog(GalleryController& c) {
       desktop_dialog_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
     return;
   }
-  if (const auto path = desktop_dialog_.get()) request_export(c, *path);
+  if (const auto path = desktop_dialog_.get()) file_chosen(c, *path);
 }
 
 void GalleryView::request_export(GalleryController& c, const fs::path& path) {
@@ -762,16 +961,16 @@ void GalleryView::open_dropped(GalleryController& c, const std::string& path) {
   const bool image = ext == ".png" || ext == ".PNG" || ext == ".jpg" || ext == ".jpeg" ||
                      ext == ".JPG" || ext == ".JPEG";
   open_kind_ = image ? "photo" : "body";
-  open_source_ = path;
-  if (image) open_dims_ = 12;
   prefs_.open_panel = true;
-  intent::Open o{SpaceSettings{open_kind_, open_source_, image ? 12 : open_dims_}, image ? 5 : 3,
-                 open_zoom_};
-  if (c.has_progress()) {
-    confirm_open_ = o;
+  if (image) {
+    open_source_ = path;
+    open_dims_ = 12;
+    open_grid_ = 5;
   } else {
-    c.queue(o);
+    set_model_file(path);
+    open_grid_ = 3;
   }
+  start_new_search(c);
 }
 
 void GalleryView::press_cell(GalleryController& c, int index) {

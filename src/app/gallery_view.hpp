@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <future>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,19 @@ class GalleryView {
   // A dialog or question is open (the window keeps polling).
   bool waiting_for_dialog() const { return desktop_dialog_.valid(); }
 
+  // The New-search panel's body model: "neutral", "female", "male" (built in) or "file" (then
+  // model_file() is the file). What the panel's buttons call; tests call them too.
+  const std::string& model_choice() const { return open_model_; }
+  const std::string& model_file() const { return open_model_file_; }
+  void choose_model(const std::string& choice);  // "file" with no file yet opens the dialog
+  void set_model_file(const std::string& path);  // also chooses "file"
+  // "Open / apply": a new search with the panel's settings (asks first if the current search
+  // has progress, as a dropped file does).
+  void start_new_search(GalleryController& c);
+  // Where a named widget of the last frame was, in window pixels ("model:female",
+  // "model:file", "new-search", "panel:new-search", "confirm:start"), for scripted tests.
+  std::optional<LayoutRect> widget(const std::string& name) const;
+
   const GalleryLayout& layout() const { return layout_; }
   int cell_pixels() const { return cell_pixels_; }
   int hovered_cell() const { return hovered_; }
@@ -76,11 +90,17 @@ class GalleryView {
   void draw_open(GalleryController& c);
   void draw_sliders(GalleryController& c);
   void draw_modals(GalleryController& c);
+  void draw_model_picker();
+  void select_model_source(const std::string& source);
   void draw_file_browser();
   void draw_hover_tooltip(const GalleryController& c);
   void request_export(GalleryController& c, const std::filesystem::path& path);
   void open_save_dialog(GalleryController& c);
+  void open_model_dialog();
+  void open_file_dialog(const std::filesystem::path& folder, const std::string& name);
+  void file_chosen(GalleryController& c, const std::filesystem::path& path);
   void poll_desktop_dialog(GalleryController& c);
+  void note_widget(const std::string& name);
   void set_preset(int index);
 
   ViewOptions options_;
@@ -107,10 +127,17 @@ class GalleryView {
   // Fields of the panels (what the user typed; intents carry copies).
   std::string save_path_;
   std::string open_kind_ = "body";
-  std::string open_source_;
+  std::string open_source_;  // the photo file (bodies: the model picker below)
+  std::string open_model_ = "neutral";
+  std::string open_model_file_;
+  // The body model of a new search this view asked for; remembered in the prefs once that
+  // search has opened (a file that fails to load is not remembered).
+  std::optional<std::string> requested_model_;
   int open_dims_ = 10;
   int open_grid_ = 3;
   int open_zoom_ = 4;
+
+  MeasurementPanelState measurement_panel_;
 
   // Expert sliders: while set, the "current best" preview shows this point instead.
   std::optional<Eigen::VectorXd> slider_x_;
@@ -120,6 +147,9 @@ class GalleryView {
   std::optional<intent::Open> confirm_open_;
   std::optional<std::filesystem::path> confirm_overwrite_;
   bool confirm_start_over_ = false;
+  // What the file dialog (desktop or in-app) is choosing.
+  enum class DialogPurpose { kSave, kOpenModel };
+  DialogPurpose dialog_purpose_ = DialogPurpose::kSave;
   // The in-app file browser.
   bool browser_open_ = false;
   std::string browser_dir_;
@@ -127,6 +157,7 @@ class GalleryView {
   std::optional<std::filesystem::path> browser_result_;
   // The desktop's dialog runs as a child process; its answer arrives here.
   std::future<std::optional<std::string>> desktop_dialog_;
+  std::map<std::string, LayoutRect> widgets_;
 };
 
 }  // namespace app

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "sps/json_fields.hpp"
+#include "sps/parallel_for.hpp"
 
 namespace app {
 
@@ -90,6 +93,14 @@ Session::Session(const SessionSettings& settings, sps::SearchOptions options)
   update_views();
 }
 
+void Session::set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
+  search_.set_perceptual_scale(mm_per_unit);
+  if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
+    start_point_ = search_.current_plane().c;
+  }
+  update_views();
+}
+
 void Session::set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy) {
   distance_ = std::move(distance);
   policy_ = std::move(policy);
@@ -118,9 +129,31 @@ sps::GridView first_view(bool line, int n) {
 
 }  // namespace
 
+void Session::set_constraint_projector(std::shared_ptr<const ConstraintProjector> projector) {
+  projector_ = std::move(projector);
+  saved_holds_ = projector_ ? projector_->held_values() : std::vector<HeldValue>{};
+  update_views();
+}
+
 std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
+  if (!held_) return plane_cells(search_.current_plane(), view);
+  for (const auto& [seen, cells] : held_cells_) {
+    if (seen.s == view.s && seen.t == view.t && seen.spacing == view.spacing) return cells;
+  }
+  auto cells = plane_cells(held_->plane, view);
+  // Holds: each cell moved back onto the held measurements (inside the box); two threads, as
+  // a grid change happens on the window's thread (projections are thread-safe).
+  sps::parallel_for(static_cast<int>(cells.size()), 2, [&](int i) {
+    auto& p = cells[static_cast<std::size_t>(i)];
+    p.x = held_->project(p.x);
+  });
+  held_cells_.emplace_back(view, cells);
+  return cells;
+}
+
+std::vector<sps::GridPoint> Session::plane_cells(const sps::Plane& plane,
+                                                 const sps::GridView& view) const {
   const int n = settings_.grid_size;
-  const sps::Plane& plane = search_.current_plane();
   if (!plane.is_line()) return sps::grid_points(plane, n, view);
   std::vector<sps::GridPoint> points;
   for (int k = 0; k < line_points(n); ++k) {
@@ -184,6 +217,8 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
 }
 
 void Session::update_views() {
+  held_cells_.clear();
+  held_ = projector_ ? projector_->hold(search_.current_plane()) : nullptr;
   const bool line = search_.current_plane().is_line();
   views_.assign(1, first_view(line, settings_.grid_size));
   if (distance_ && !line && shows_look_alikes(views_.front(), kCloneMm)) {
@@ -246,12 +281,44 @@ Submission Session::submission() const {
   for (std::size_t level = 0; level < path_.size(); ++level) {
     const auto points = cells_at(views_[level]);
     const auto& clicked = path_[level];
-    const auto& preferred = points[static_cast<size_t>(clicked.row * n + clicked.col)].x;
+    const auto index = static_cast<Eigen::Index>(clicked.row * n + clicked.col);
+    const auto& preferred = points[static_cast<size_t>(index)].x;
+    Eigen::MatrixXd pairwise;
+    if (distance_ && policy_.compare_mm > 0.0) {
+      std::vector<Eigen::VectorXd> xs;
+      for (const auto& p : points) xs.push_back(p.x);
+      pairwise = distance_(xs);
+    }
     std::vector<Eigen::VectorXd> comparison{preferred};
-    for (const auto& p : points) {
-      if ((p.x - preferred).norm() > 1e-9) comparison.push_back(p.x);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const auto& p = points[k];
+      if ((p.x - preferred).norm() <= 1e-9) continue;
+      if (pairwise.size() > 0 &&
+          !(pairwise(index, static_cast<Eigen::Index>(k)) >= policy_.compare_mm)) {
+        continue;
+      }
+      comparison.push_back(p.x);
     }
     if (comparison.size() > 1) s.extra_comparisons.push_back(std::move(comparison));
+  }
+  if (held_) {
+    // The optimizer compares the choice with the plane's representatives (c, c+-u, c+-v...):
+    // with holds, the held bodies shown there, never the unprojected plane's. Taken from the
+    // cells already projected where a grid showed them, projected otherwise.
+    for (const auto& [ps, pt] : search_.representative_coordinates()) {
+      std::optional<Eigen::VectorXd> shown;
+      if (!held_->plane.is_line()) {
+        for (const auto& seen : held_cells_) {
+          for (const auto& cell : seen.second) {
+            if (std::abs(cell.s - ps) < 1e-9 && std::abs(cell.t - pt) < 1e-9) shown = cell.x;
+          }
+        }
+      }
+      if (!shown) {
+        shown = held_->project(held_->plane.point(ps, pt).cwiseMax(0.0).cwiseMin(1.0));
+      }
+      s.representatives.push_back(*shown);
+    }
   }
   return s;
 }
@@ -314,7 +381,7 @@ Eigen::VectorXd Session::current_best() const {
     const auto points = cells_at(views_[path_.size() - 1]);
     return points[static_cast<size_t>(clicked.row * settings_.grid_size + clicked.col)].x;
   }
-  return search_.x_plus();
+  return held_ ? held_->plane.c : search_.x_plus();
 }
 
 std::string Session::to_json() const {
@@ -335,6 +402,11 @@ std::string Session::to_json() const {
     history.push_back({{"chosen", vector_json(h.chosen)}, {"path", path_json(h.path)}});
   }
   j["history"] = history;
+  if (!saved_holds_.empty()) {
+    json holds = json::array();
+    for (const auto& h : saved_holds_) holds.push_back({{"name", h.name}, {"value", h.value}});
+    j["holds"] = holds;
+  }
   // A model path that is not UTF-8 cannot be stored as it is; it is saved with U+FFFD
   // replacement characters (the resume then reports the model missing) rather than failing.
   return j.dump(1, ' ', false, json::error_handler_t::replace);
@@ -399,6 +471,27 @@ Session Session::from_json(const std::string& text) {
     }
     if (static_cast<int>(session.history_.size()) != session.search_.iteration()) {
       throw std::runtime_error("history length differs from the number of submissions");
+    }
+    // Holds (optional: files from before issue 13 have none). Only their form is checked here;
+    // the design space checks names and values when the window holds them again.
+    if (j.contains("holds")) {
+      const json& holds = j.at("holds");
+      if (!holds.is_array()) throw std::runtime_error("holds must be an array");
+      if (holds.size() > 64) throw std::runtime_error("holds has more than 64 entries");
+      for (const auto& h : holds) {
+        if (!h.is_object() || !h.contains("name") || !h.at("name").is_string() ||
+            !h.contains("value") || !h.at("value").is_number()) {
+          throw std::runtime_error("holds entries must be {\"name\": text, \"value\": number}");
+        }
+        HeldValue held{h.at("name").get<std::string>(), h.at("value").get<double>()};
+        if (held.name.empty() || held.name.size() > 64) {
+          throw std::runtime_error("holds has a name that is empty or longer than 64 characters");
+        }
+        if (!std::isfinite(held.value) || !(held.value > 0.0) || held.value > 1e6) {
+          throw std::runtime_error("holds value of " + held.name + " is not a positive number");
+        }
+        session.saved_holds_.push_back(std::move(held));
+      }
     }
     session.update_views();
     return session;

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "app/constraint_projector.hpp"
 #include "sps/plane_search.hpp"
 #include "sps/zoom_grid.hpp"
 
@@ -55,12 +57,23 @@ struct ZoomPolicy {
   double distinct_mm = 10.0;
   // Zoom steps tried in order (new spacing / old spacing): the paper's factor 2 first.
   std::vector<double> factors{0.5, 0.6, 0.7, 0.8};
+  // A click on a zoom level counts as "better than" only the cells of that grid that differ
+  // from the clicked one by at least this much (mm, largest vertex distance): between near
+  // neighbours a person's pick is mostly a guess, and taken as a preference it misleads the
+  // model (body benchmark, docs/benchmarks.md). 0 counts every cell.
+  double compare_mm = 40.0;
 };
 
 // The submission a finished plane produces for sps::PlaneSearch::submit().
 struct Submission {
   Eigen::VectorXd chosen;
   std::vector<std::vector<Eigen::VectorXd>> extra_comparisons;
+  // With holds: the plane's representatives as shown (projected), for submit()'s third
+  // argument; empty: the optimizer's own plane was shown.
+  std::vector<Eigen::VectorXd> representatives;
+  // A point the user set directly (sliders, typed targets): the next plane is centred on it
+  // (sps::PlaneSearch::submit).
+  bool set_directly = false;
 };
 
 class Session {
@@ -77,9 +90,21 @@ class Session {
   // How much each search coordinate changes the body over its range (mm, e.g.
   // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and
   // shapes its planes with it from the next plane on (saved with the search). Empty: none.
-  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
-    search_.set_perceptual_scale(mm_per_unit);
-  }
+  // Before the first click of a new session it also starts from the plane of the two most
+  // visible directions (sps::visible_first_plane).
+  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit);
+
+  // Holds (issue 13; app/constraint_projector.hpp): with a projector every plane shown is the
+  // held plane and every cell (and so every point the optimizer learns from) is projected
+  // onto the holds. nullptr releases them; the preference data stay. The projector's
+  // held_values() are saved with the session; a session read from a file has them in
+  // saved_holds() until the window installs a projector again (the projector itself is the
+  // design space's, so it is not made here).
+  void set_constraint_projector(std::shared_ptr<const ConstraintProjector> projector);
+  const std::vector<HeldValue>& saved_holds() const { return saved_holds_; }
+  const ConstraintProjector* constraint_projector() const { return projector_.get(); }
+  // The plane the cells lie on: the held plane with holds, else the optimizer's.
+  const sps::Plane& shown_plane() const { return held_ ? held_->plane : search_.current_plane(); }
 
   const SessionSettings& settings() const { return settings_; }
   const sps::PlaneSearch& search() const { return search_; }
@@ -145,6 +170,7 @@ class Session {
   sps::GridView next_view(const sps::GridView& view, const sps::GridCell& clicked, bool check,
                           bool& distinct) const;
   bool shows_look_alikes(const sps::GridView& view, double threshold_mm) const;
+  std::vector<sps::GridPoint> plane_cells(const sps::Plane& plane, const sps::GridView& view) const;
 
   SessionSettings settings_;
   sps::PlaneSearch search_;
@@ -155,6 +181,12 @@ class Session {
   ZoomPolicy policy_;
   std::vector<sps::GridView> views_;  // path_.size() + 1 entries
   bool ended_early_ = false;
+  // Holds: the projector, the current plane held (made in update_views) and the projected
+  // cells of the views asked for so far on this plane.
+  std::shared_ptr<const ConstraintProjector> projector_;
+  std::shared_ptr<const HeldPlane> held_;
+  mutable std::vector<std::pair<sps::GridView, std::vector<sps::GridPoint>>> held_cells_;
+  std::vector<HeldValue> saved_holds_;  // what to_json() writes as "holds"
 };
 
 }  // namespace app

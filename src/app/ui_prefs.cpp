@@ -44,20 +44,57 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path) {
   p.open_panel = get_bool("open_panel", p.open_panel);
   p.save_panel = get_bool("save_panel", p.save_panel);
   p.history_panel = get_bool("history_panel", p.history_panel);
+  if (const std::string model = get_string("body_model"); !model.empty()) p.body_model = model;
+  p.body_model_file = get_string("body_model_file");
   return p;
 }
 
 bool save_ui_prefs(const UiPrefs& p, const std::filesystem::path& path) {
-  const nlohmann::json j = {{"window_width", p.window_width}, {"window_height", p.window_height},
-                            {"save_folder", p.save_folder},   {"save_name", p.save_name},
-                            {"view_preset", p.view_preset},   {"open_panel", p.open_panel},
-                            {"save_panel", p.save_panel},     {"history_panel", p.history_panel}};
+  const nlohmann::json j = {
+      {"window_width", p.window_width}, {"window_height", p.window_height},
+      {"save_folder", p.save_folder},   {"save_name", p.save_name},
+      {"view_preset", p.view_preset},   {"open_panel", p.open_panel},
+      {"save_panel", p.save_panel},     {"history_panel", p.history_panel},
+      {"body_model", p.body_model},     {"body_model_file", p.body_model_file}};
   try {
     util::write_file_atomically(path, j.dump(1), /*create_folders=*/true);
     return true;
   } catch (const std::exception&) {
     return false;
   }
+}
+
+UiPrefsSaver::UiPrefsSaver(std::filesystem::path path, UiPrefs saved, double delay_seconds)
+    : path_(std::move(path)), saved_(std::move(saved)), delay_(delay_seconds) {}
+
+bool UiPrefsSaver::update(const UiPrefs& current, double now_seconds) {
+  if (current == saved_) {
+    pending_ = false;
+    return false;
+  }
+  if (!pending_ || current != pending_prefs_) {
+    pending_ = true;
+    pending_prefs_ = current;
+    changed_at_ = now_seconds;
+    return false;
+  }
+  if (now_seconds - changed_at_ < delay_) return false;
+  if (write(current)) return true;
+  changed_at_ = now_seconds;  // failed (full disk, folder gone): try again after a delay
+  return false;
+}
+
+bool UiPrefsSaver::flush(const UiPrefs& current) {
+  pending_ = false;
+  return current == saved_ || write(current);
+}
+
+bool UiPrefsSaver::write(const UiPrefs& current) {
+  if (!save_ui_prefs(current, path_)) return false;
+  saved_ = current;
+  pending_ = false;
+  ++writes_;
+  return true;
 }
 
 }  // namespace app

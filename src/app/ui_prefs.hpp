@@ -1,6 +1,7 @@
 // What the window remembers between launches: its size, the last folder and file name saved
-// to, the view and which panels were open. A small JSON file beside the session file; a
-// missing or broken one just means defaults (it is a convenience, never user work).
+// to, the view, which panels were open and the body model chosen for a new search. A small JSON
+// file beside the session file; a missing or broken one just means defaults (it is a convenience,
+// never user work).
 #pragma once
 
 #include <filesystem>
@@ -17,6 +18,19 @@ struct UiPrefs {
   bool open_panel = false;
   bool save_panel = true;
   bool history_panel = true;
+  // The New-search panel's body model: a built-in model's name ("neutral", "female", "male")
+  // or a model file. A launch without --model starts a new search on it.
+  std::string body_model = "neutral";
+  std::string body_model_file;  // the last file chosen, offered again under "File"
+
+  bool operator==(const UiPrefs& o) const {
+    return window_width == o.window_width && window_height == o.window_height &&
+           save_folder == o.save_folder && save_name == o.save_name &&
+           view_preset == o.view_preset && open_panel == o.open_panel &&
+           save_panel == o.save_panel && history_panel == o.history_panel &&
+           body_model == o.body_model && body_model_file == o.body_model_file;
+  }
+  bool operator!=(const UiPrefs& o) const { return !(*this == o); }
 };
 
 // "<session folder>/ui.json".
@@ -24,5 +38,31 @@ std::filesystem::path ui_prefs_path(const std::filesystem::path& session_path);
 UiPrefs load_ui_prefs(const std::filesystem::path& path);
 // Atomic; returns false (and leaves the old file) when it cannot be written.
 bool save_ui_prefs(const UiPrefs& prefs, const std::filesystem::path& path);
+
+// Writes the prefs when they change rather than only at a normal close (a crash, a kill or a
+// logout would lose them), once they have stayed the same for `delay_seconds`: a window being
+// resized changes them every frame. Each write is atomic (save_ui_prefs).
+class UiPrefsSaver {
+ public:
+  // `saved`: what the file holds now (what load_ui_prefs returned).
+  UiPrefsSaver(std::filesystem::path path, UiPrefs saved, double delay_seconds = 1.0);
+  // Every frame, with the current prefs; true when it wrote the file in this call. A write that
+  // fails is tried again after another delay.
+  bool update(const UiPrefs& current, double now_seconds);
+  // At exit: writes now if `current` is not what the file holds; false if that write failed.
+  bool flush(const UiPrefs& current);
+  int writes() const { return writes_; }
+
+ private:
+  bool write(const UiPrefs& current);
+
+  std::filesystem::path path_;
+  UiPrefs saved_;
+  double delay_;
+  bool pending_ = false;
+  UiPrefs pending_prefs_;
+  double changed_at_ = 0.0;
+  int writes_ = 0;
+};
 
 }  // namespace app

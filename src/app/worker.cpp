@@ -16,7 +16,8 @@ bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, 
         const auto start = std::chrono::steady_clock::now();
         if (delay.count() > 0) std::this_thread::sleep_for(delay);
         try {
-          search.submit(submission.chosen, submission.extra_comparisons);
+          search.submit(submission.chosen, submission.extra_comparisons, submission.representatives,
+                        submission.set_directly);
           result.search = std::move(search);
         } catch (const std::exception& e) {
           result.error = e.what();

@@ -13,8 +13,13 @@
 // more than 15% between neighbouring slices and the chest search stops there.
 #include "body/measurements.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
@@ -23,11 +28,12 @@
 
 namespace body {
 
-double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double axis_x,
-                   double axis_z) {
-  const Eigen::Vector2d axis(axis_x, axis_z);
+namespace {
+
+// The girth of the slice piece that surrounds the axis (0 if none).
+double piece_girth(const std::vector<SlicePiece>& pieces, const Eigen::Vector2d& axis) {
   double best = 0.0;
-  for (const auto& piece : slice_mesh(mesh.vertices, faces, y)) {
+  for (const auto& piece : pieces) {
     const auto hull = convex_hull(piece.points);
     if (!hull_contains(hull, axis)) continue;
     best = std::max(best, polygon_perimeter(hull));
@@ -35,7 +41,18 @@ double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double ax
   return best;
 }
 
-double enclosed_volume(const Vertices& vertices, const Faces& faces) {
+}  // namespace
+
+double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double axis_x,
+                   double axis_z) {
+  return piece_girth(slice_mesh(mesh.vertices, faces, y), Eigen::Vector2d(axis_x, axis_z));
+}
+
+namespace {
+
+// Six times the signed enclosed volume: positive when the faces turn counter-clockwise seen
+// from outside.
+double signed_six_volume(const Vertices& vertices, const Faces& faces) {
   double six_volume = 0.0;
   const Eigen::Index V = vertices.rows();
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -45,31 +62,143 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces) {
     const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
     six_volume += a.dot(b.cross(c));
   }
-  return std::abs(six_volume) / 6.0;
+  return six_volume;
 }
 
-Measurements measure(const Model& model, const BodyMesh& mesh) {
+}  // namespace
+
+double enclosed_volume(const Vertices& vertices, const Faces& faces) {
+  return std::abs(signed_six_volume(vertices, faces)) / 6.0;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+int joint_index(const Model& model, const BodyMesh& mesh, const char* name) {
+  for (std::size_t j = 0; j < model.joint_names.size(); ++j) {
+    if (model.joint_names[j] == name && static_cast<Eigen::Index>(j) < mesh.joints.rows()) {
+      return static_cast<int>(j);
+    }
+  }
+  return -1;
+}
+
+Eigen::Vector3d joint(const BodyMesh& mesh, int j) {
+  return mesh.joints.row(j).cast<double>().transpose();
+}
+
+double shoulder_width(const Model& model, const BodyMesh& mesh) {
+  const int l = joint_index(model, mesh, "left_shoulder");
+  const int r = joint_index(model, mesh, "right_shoulder");
+  if (l < 0 || r < 0) return kNaN;
+  const Eigen::Vector3d d = joint(mesh, l) - joint(mesh, r);
+  return std::hypot(d.x(), d.z());
+}
+
+double arm_length(const Model& model, const BodyMesh& mesh) {
+  double sum = 0.0;
+  for (const char* side : {"left", "right"}) {
+    const std::string s(side);
+    const int a = joint_index(model, mesh, (s + "_shoulder").c_str());
+    const int b = joint_index(model, mesh, (s + "_elbow").c_str());
+    const int c = joint_index(model, mesh, (s + "_wrist").c_str());
+    if (a < 0 || b < 0 || c < 0) return kNaN;
+    sum += (joint(mesh, a) - joint(mesh, b)).norm() + (joint(mesh, b) - joint(mesh, c)).norm();
+  }
+  return 0.5 * sum;
+}
+
+// The crotch: the highest downward-facing triangle that the vertical line (x, z) crosses
+// below `ceiling` (absolute y); NaN if none.
+double crotch_y(const Vertices& vertices, const Faces& faces, double x, double z, double ceiling) {
+  double best = -std::numeric_limits<double>::infinity();
+  const Eigen::Index V = vertices.rows();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    if (faces(f, 0) >= V || faces(f, 1) >= V || faces(f, 2) >= V) continue;
+    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
+    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
+    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
+    // Barycentric coordinates of (x, z) in the triangle's projection on the floor.
+    const double area = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+    if (std::abs(area) < 1e-14) continue;
+    const double wb = ((x - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (z - a.z())) / area;
+    const double wc = ((b.x() - a.x()) * (z - a.z()) - (x - a.x()) * (b.z() - a.z())) / area;
+    const double wa = 1.0 - wb - wc;
+    if (wa < 0.0 || wb < 0.0 || wc < 0.0) continue;
+    // The normal (b - a) x (c - a) has y = -area: it faces down when area > 0 (faces turning
+    // counter-clockwise seen from outside; measure() flips a mesh wound the other way).
+    if (!(area > 0.0)) continue;
+    const double y = wa * a.y() + wb * b.y() + wc * c.y();
+    if (y < ceiling && y > best) best = y;
+  }
+  return std::isfinite(best) ? best : kNaN;
+}
+
+}  // namespace
+
+Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsigned bands) {
   Measurements m;
   const Eigen::Index V = mesh.vertices.rows();
   if (V == 0) return m;
-  m.volume = enclosed_volume(mesh.vertices, model.faces);
+  const double six_volume = signed_six_volume(mesh.vertices, model.faces);
+  m.volume = std::abs(six_volume) / 6.0;
   m.mass = kBodyDensity * m.volume;
   const double ymin = mesh.vertices.col(1).minCoeff();
   const double ymax = mesh.vertices.col(1).maxCoeff();
   const double H = ymax - ymin;
   m.height = H;
+  m.shoulder_width = shoulder_width(model, mesh);
+  m.arm_length = arm_length(model, mesh);
+  m.inseam = kNaN;
   if (!(H > 0.0)) return m;
+  m.bmi = m.mass / (H * H);
+  {
+    const int l = joint_index(model, mesh, "left_hip");
+    const int r = joint_index(model, mesh, "right_hip");
+    double x = mesh.vertices.col(0).cast<double>().mean();
+    double z = mesh.vertices.col(2).cast<double>().mean();
+    double ceiling = ymin + 0.6 * H;
+    if (l >= 0 && r >= 0) {
+      const Eigen::Vector3d mid = 0.5 * (joint(mesh, l) + joint(mesh, r));
+      x = mid.x(), z = mid.z(), ceiling = mid.y();
+    }
+    // The winding decides which side is "down" (the signed volume says which way it turns).
+    double y = kNaN;
+    if (six_volume >= 0.0) {
+      y = crotch_y(mesh.vertices, model.faces, x, z, ceiling);
+    } else {
+      Faces flipped = model.faces;
+      flipped.col(1).swap(flipped.col(2));
+      y = crotch_y(mesh.vertices, flipped, x, z, ceiling);
+    }
+    if (y - ymin > 0.2 * H) m.inseam = y - ymin;
+  }
+  if (!girths) return m;
   const double ax = mesh.vertices.col(0).cast<double>().mean();
   const double az = mesh.vertices.col(2).cast<double>().mean();
   const int steps = 200;
+  // Every slice the bands may use (0.45 H to 0.75 H) in one pass over the faces; each girth
+  // (its convex hulls) only when a band asks for it, once.
+  constexpr int kLowest = 90, kHighest = 150;
+  std::vector<double> heights;
+  for (int i = kLowest; i <= kHighest; ++i) heights.push_back(ymin + H * i / steps);
+  const auto crossing = faces_crossing(mesh.vertices, model.faces, heights);
+  std::vector<double> girths_at(heights.size(), -1.0);
+  const Eigen::Vector2d axis(ax, az);
   auto girth_at = [&](int i) {
-    return torso_girth(mesh, model.faces, ymin + H * i / steps, ax, az);
+    const auto k = static_cast<std::size_t>(i - kLowest);
+    double& g = girths_at[k];
+    if (g < 0.0)
+      g = piece_girth(slice_mesh(mesh.vertices, model.faces, heights[k], crossing[k]), axis);
+    return g;
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   m.chest_height = m.waist_height = m.hips_height = nan;
 
   double previous = 0.0;
-  for (int i = 130; i <= 150; ++i) {  // chest: max in [0.65, 0.75] H, below the armpits
+  for (int i = 130; i <= 150 && (bands & kChestBand) != 0;
+       ++i) {  // chest: max in [0.65, 0.75] H, below the armpits
     const double g = girth_at(i);
     // Arms that hang close (A-pose) join the torso slice at the armpit: the girth jumps from
     // one slice to the next (0.5% of H apart) by far more than a chest ever grows. Stop there.
@@ -79,21 +208,174 @@ Measurements measure(const Model& model, const BodyMesh& mesh) {
   }
   int waist_i = -1;
   double waist = std::numeric_limits<double>::infinity();
-  for (int i = 112; i <= 134; ++i) {  // waist: min in [0.56, 0.67] H
+  for (int i = 112; i <= 134 && (bands & (kWaistBand | kHipsBand)) != 0;
+       ++i) {  // waist: min in [0.56, 0.67] H
     const double g = girth_at(i);
     if (g > 0.0 && g < waist) waist = g, waist_i = i;
   }
   if (waist_i >= 0) m.waist = waist, m.waist_height = H * waist_i / steps;
   const int hip_top = waist_i >= 0 ? waist_i : 120;
-  for (int i = 90; i <= hip_top; ++i) {  // hips: max from 0.45 H up to the waist
+  for (int i = 90; i <= hip_top && (bands & kHipsBand) != 0;
+       ++i) {  // hips: max from 0.45 H up to the waist
     const double g = girth_at(i);
     if (g > m.hips) m.hips = g, m.hips_height = H * i / steps;
   }
   return m;
 }
 
-Measurements measure(const Model& model, const Eigen::VectorXf& betas) {
-  return measure(model, evaluate(model, betas));
+Measurements measure(const Model& model, const Eigen::VectorXf& betas, bool girths,
+                     unsigned bands) {
+  return measure(model, evaluate(model, betas), girths, bands);
+}
+
+const std::vector<MeasurementKind>& measurement_kinds() {
+  // Examples: about the middle of ANSUR II's adults (stature ~175 cm, chest ~100 cm, waist
+  // ~88 cm, hips ~100 cm); the joint-based lengths read a few cm under the callipers' values.
+  static const std::vector<MeasurementKind> kinds{
+      {"height", "Height", Quantity::kLength, &Measurements::height, false, 0.01, "e.g. 175cm",
+       "e.g. 69in"},
+      {"mass", "Mass", Quantity::kMass, &Measurements::mass, false, 1.5, "e.g. 75kg", "e.g. 165lb"},
+      {"bmi", "BMI", Quantity::kBmi, &Measurements::bmi, false, 0.5, "e.g. 24", "e.g. 24"},
+      {"chest", "Chest", Quantity::kLength, &Measurements::chest, true, 0.01, "e.g. 100cm",
+       "e.g. 39in"},
+      {"waist", "Waist", Quantity::kLength, &Measurements::waist, true, 0.01, "e.g. 85cm",
+       "e.g. 33in"},
+      {"hips", "Hips", Quantity::kLength, &Measurements::hips, true, 0.01, "e.g. 100cm",
+       "e.g. 39in"},
+      {"shoulder_width", "Shoulder width", Quantity::kLength, &Measurements::shoulder_width, false,
+       0.01, "e.g. 36cm", "e.g. 14in"},
+      {"inseam", "Inseam", Quantity::kLength, &Measurements::inseam, false, 0.01, "e.g. 80cm",
+       "e.g. 31in"},
+      {"arm_length", "Arm length", Quantity::kLength, &Measurements::arm_length, false, 0.01,
+       "e.g. 55cm", "e.g. 22in"},
+  };
+  return kinds;
+}
+
+const MeasurementKind* find_measurement(const std::string& name) {
+  for (const auto& k : measurement_kinds()) {
+    if (name == k.name) return &k;
+  }
+  return nullptr;
+}
+
+std::string measurement_names() {
+  std::string names;
+  for (const auto& k : measurement_kinds())
+    names += (names.empty() ? "" : ", ") + std::string(k.name);
+  return names;
+}
+
+namespace {
+
+constexpr double kMetresPerInch = 0.0254;
+constexpr double kKgPerPound = 0.45359237;
+
+std::string printed(const char* format, double a) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, a);
+  return text;
+}
+
+}  // namespace
+
+std::string format_measurement(Quantity quantity, double value, Units units) {
+  if (!std::isfinite(value)) return "n/a";
+  switch (quantity) {
+    case Quantity::kLength:
+      if (units == Units::kMetric) return printed("%.1f cm", value * 100.0);
+      {
+        const double inches = value / kMetresPerInch;
+        // Statures read in feet and inches; girths and breadths in inches.
+        if (inches >= 48.0) {
+          const int feet = static_cast<int>(std::floor(inches / 12.0));
+          char text[64];
+          std::snprintf(text, sizeof text, "%d ft %.1f in", feet, inches - 12.0 * feet);
+          return text;
+        }
+        return printed("%.1f in", inches);
+      }
+    case Quantity::kMass:
+      return units == Units::kMetric ? printed("%.1f kg", value)
+                                     : printed("%.1f lb", value / kKgPerPound);
+    case Quantity::kBmi:
+      return printed("%.1f", value);
+  }
+  return "n/a";
+}
+
+std::string format_difference(Quantity quantity, double difference, Units units) {
+  if (!std::isfinite(difference)) return "n/a";
+  switch (quantity) {
+    case Quantity::kLength:
+      return units == Units::kMetric ? printed("%+.1f cm", difference * 100.0)
+                                     : printed("%+.2f in", difference / kMetresPerInch);
+    case Quantity::kMass:
+      return units == Units::kMetric ? printed("%+.1f kg", difference)
+                                     : printed("%+.1f lb", difference / kKgPerPound);
+    case Quantity::kBmi:
+      return printed("%+.1f", difference);
+  }
+  return "n/a";
+}
+
+double parse_measurement_value(const MeasurementKind& kind, const std::string& text) {
+  const std::string what = std::string(kind.name) + " '" + text + "'";
+  std::size_t i = 0;
+  while (i < text.size() &&
+         (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.' || text[i] == '+' ||
+          text[i] == '-' || text[i] == 'e' || text[i] == 'E')) {
+    // An 'e' only counts as an exponent when a digit or sign follows ("1e2", not "1em").
+    if ((text[i] == 'e' || text[i] == 'E') &&
+        !(i + 1 < text.size() && (std::isdigit(static_cast<unsigned char>(text[i + 1])) ||
+                                  text[i + 1] == '+' || text[i + 1] == '-'))) {
+      break;
+    }
+    ++i;
+  }
+  const std::string number = text.substr(0, i);
+  std::string unit = text.substr(i);
+  unit.erase(std::remove(unit.begin(), unit.end(), ' '), unit.end());
+  char* end = nullptr;
+  const double raw = number.empty() ? kNaN : std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(raw)) {
+    throw std::invalid_argument(
+        what + " is not a number (write e.g. " +
+        (kind.quantity == Quantity::kMass ? "85 or 85kg" : "1.80 or 180cm") + ")");
+  }
+  double factor = 1.0;
+  bool unit_ok = unit.empty();
+  if (kind.quantity == Quantity::kLength) {
+    const struct {
+      const char* name;
+      double factor;
+    } lengths[] = {{"m", 1.0},
+                   {"cm", 0.01},
+                   {"mm", 0.001},
+                   {"in", kMetresPerInch},
+                   {"ft", 12 * kMetresPerInch}};
+    for (const auto& u : lengths) {
+      if (unit == u.name) factor = u.factor, unit_ok = true;
+    }
+  } else if (kind.quantity == Quantity::kMass) {
+    if (unit == "kg") unit_ok = true;
+    if (unit == "lb" || unit == "lbs") factor = kKgPerPound, unit_ok = true;
+  }
+  if (!unit_ok) {
+    throw std::invalid_argument(what + ": unknown unit '" + unit + "' for " + kind.name +
+                                (kind.quantity == Quantity::kLength ? " (m, cm, mm, in, ft)"
+                                 : kind.quantity == Quantity::kMass ? " (kg, lb)"
+                                                                    : " (BMI has no unit)"));
+  }
+  const double value = raw * factor;
+  const double limit = kind.quantity == Quantity::kLength ? 3.0
+                       : kind.quantity == Quantity::kMass ? 500.0
+                                                          : 100.0;
+  if (!(value > 0.0) || value > limit) {
+    throw std::invalid_argument(what + " is out of range: a body's " + kind.name + " lies in (0, " +
+                                format_measurement(kind.quantity, limit, Units::kMetric) + "]");
+  }
+  return value;
 }
 
 }  // namespace body

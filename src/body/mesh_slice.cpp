@@ -1,5 +1,6 @@
 #include "body/mesh_slice.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <numeric>
 #include <unordered_map>
@@ -25,9 +26,10 @@ struct UnionFind {
   void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
 };
 
-}  // namespace
-
-std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h) {
+// The slice through the faces listed (ascending face order, as a pass over all faces visits
+// them), or through every face when `face_ids` is null.
+std::vector<SlicePiece> slice_faces(const Vertices& vertices, const Faces& faces, double h,
+                                    const std::vector<Eigen::Index>* face_ids) {
   // A vertex exactly on the plane is nudged up (treated as above) so every crossing lies
   // strictly inside an edge and is identified by that edge.
   auto above = [&](std::uint32_t v) { return static_cast<double>(vertices(v, 1)) >= h; };
@@ -47,7 +49,10 @@ std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
     edge_point.emplace(key, id);
     return id;
   };
-  for (Eigen::Index i = 0; i < faces.rows(); ++i) {
+  const Eigen::Index count =
+      face_ids != nullptr ? static_cast<Eigen::Index>(face_ids->size()) : faces.rows();
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const Eigen::Index i = face_ids != nullptr ? (*face_ids)[static_cast<std::size_t>(k)] : k;
     const std::uint32_t v[3] = {faces(i, 0), faces(i, 1), faces(i, 2)};
     const bool up[3] = {above(v[0]), above(v[1]), above(v[2])};
     if (up[0] == up[1] && up[1] == up[2]) continue;
@@ -71,6 +76,56 @@ std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
     pieces[it->second].points.push_back(points[p]);
   }
   return pieces;
+}
+
+}  // namespace
+
+std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h) {
+  return slice_faces(vertices, faces, h, nullptr);
+}
+
+std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h,
+                                   const std::vector<Eigen::Index>& face_ids) {
+  return slice_faces(vertices, faces, h, &face_ids);
+}
+
+std::vector<std::vector<Eigen::Index>> faces_crossing(const Vertices& vertices, const Faces& faces,
+                                                      const std::vector<double>& heights) {
+  // Heights in ascending order (with their original index): a face crosses the plane y = h
+  // when one vertex is below and one at or above it, i.e. exactly the heights in
+  // (min y, max y] of its vertices, as slice_faces decides.
+  std::vector<std::size_t> order(heights.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return heights[a] < heights[b]; });
+  std::vector<double> sorted;
+  for (const std::size_t i : order) sorted.push_back(heights[i]);
+  std::vector<std::vector<Eigen::Index>> crossing(heights.size());
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    double lo = vertices(faces(f, 0), 1), hi = lo;
+    for (int c = 1; c < 3; ++c) {
+      const double y = vertices(faces(f, c), 1);
+      lo = std::min(lo, y);
+      hi = std::max(hi, y);
+    }
+    const auto first = std::upper_bound(sorted.begin(), sorted.end(), lo);
+    const auto last = std::upper_bound(first, sorted.end(), hi);
+    for (auto it = first; it != last; ++it) {
+      crossing[order[static_cast<std::size_t>(it - sorted.begin())]].push_back(f);
+    }
+  }
+  return crossing;
+}
+
+std::vector<std::vector<SlicePiece>> slice_mesh(const Vertices& vertices, const Faces& faces,
+                                                const std::vector<double>& heights) {
+  const auto crossing = faces_crossing(vertices, faces, heights);
+  std::vector<std::vector<SlicePiece>> slices;
+  slices.reserve(heights.size());
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    slices.push_back(slice_faces(vertices, faces, heights[i], &crossing[i]));
+  }
+  return slices;
 }
 
 }  // namespace body

@@ -287,7 +287,7 @@ bool is_builtin_model_name(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-Model load_builtin_model(const std::string& name, int components) {
+NpzArchive open_builtin_model_archive(const std::string& name) {
   if (!is_builtin_model_name(name)) {
     throw ModelError("'" + name + "' is not a built-in body model (built in: female, male, " +
                      "neutral)");
@@ -302,18 +302,22 @@ Model load_builtin_model(const std::string& name, int components) {
     begin = sg_model_male_begin;
     end = sg_model_male_end;
   }
-  Model m = load_model_from_memory(begin, static_cast<std::size_t>(end - begin),
-                                   "<embedded " + name + ">", components, 0);
-  m.name = name;
-  return m;
+  return NpzArchive::open_memory(begin, static_cast<std::size_t>(end - begin),
+                                 "<embedded " + name + ">");
 #else
-  (void)components;
   throw ModelError("<embedded " + name + ">: the default models were not built in (assets/body_" +
                    name +
                    ".npz did not exist when the project was configured; generate them with "
                    "`sequential-gallery generate-default-model` and re-run cmake, or pass "
                    "--model FILE)");
 #endif
+}
+
+Model load_builtin_model(const std::string& name, int components) {
+  const NpzArchive npz = open_builtin_model_archive(name);
+  Model m = load_from_archive(npz, components, name, 0);
+  m.name = name;
+  return m;
 }
 
 Model resolve_model(const std::string& name_or_path, int components) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "body/body_model.hpp"
+#include "body/npz_reader.hpp"
 
 namespace body {
 
@@ -32,6 +33,7 @@ void load_pose_correctives(Model& model);
 const std::vector<std::string>& builtin_model_names();
 bool is_builtin_model_name(const std::string& name);
 // Throws ModelError for an unknown name, or if the models were not built in.
+NpzArchive open_builtin_model_archive(const std::string& name);
 Model load_builtin_model(const std::string& name, int components = 10);
 
 // What a --model argument or a model picker chooses: "female", "male" or "neutral" (built in),

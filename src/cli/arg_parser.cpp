@@ -95,6 +95,7 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
         value = argv[++i];
       }
       values_[name] = value;
+      all_[name].push_back(value);
     } else if (arg == "-o") {
       if (i + 1 >= argc) throw ArgError("-o needs a file name");
       values_["output"] = argv[++i];
@@ -108,6 +109,11 @@ ArgParser::ArgParser(int argc, char** argv, std::set<std::string> flags,
 
 bool ArgParser::has(const std::string& name) const {
   return values_.count(name) != 0;
+}
+
+std::vector<std::string> ArgParser::get_all(const std::string& name) const {
+  const auto it = all_.find(name);
+  return it == all_.end() ? std::vector<std::string>{} : it->second;
 }
 
 std::optional<std::string> ArgParser::get(const std::string& name) const {

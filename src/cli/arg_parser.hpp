@@ -23,7 +23,9 @@ class ArgParser {
   ArgParser(int argc, char** argv, std::set<std::string> flags, std::set<std::string> multi = {});
 
   bool has(const std::string& name) const;
-  std::optional<std::string> get(const std::string& name) const;
+  std::optional<std::string> get(const std::string& name) const;  // the last one given
+  // Every value of a repeatable option, in order (--target height=1.8 --target mass=85).
+  std::vector<std::string> get_all(const std::string& name) const;
   std::string get_or(const std::string& name, const std::string& fallback) const;
   std::string require(const std::string& name) const;
   // A value that is free text (a name, not a path): must be valid UTF-8, since it ends up in
@@ -39,6 +41,7 @@ class ArgParser {
 
  private:
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> all_;
   std::vector<std::string> positional_;
 };
 

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
+#include <memory>
 #include <sstream>
 
+#include "body/measurement_solve.hpp"
 #include "body/model_loader.hpp"
 
 namespace cli {
@@ -102,6 +105,37 @@ Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model) {
                    model.name + "' has " + std::to_string(model.component_count()) + " components");
   }
   return betas;
+}
+
+Eigen::VectorXf apply_targets(const ArgParser& args, const body::Model& model,
+                              const Eigen::VectorXf& start) {
+  const auto texts = args.get_all("target");
+  if (texts.empty()) return start;
+  std::vector<body::MeasurementTarget> targets;
+  for (const auto& text : texts) {
+    try {
+      targets.push_back(body::parse_target(text));
+    } catch (const std::invalid_argument& e) {
+      throw ArgError(std::string("--target: ") + e.what());
+    }
+  }
+  const int K = model.component_count();
+  Eigen::VectorXf full = Eigen::VectorXf::Zero(K);
+  full.head(std::min<Eigen::Index>(K, start.size())) =
+      start.head(std::min<Eigen::Index>(K, start.size()));
+  // The solve shares the model without copying it (the caller keeps it alive).
+  const std::shared_ptr<const body::Model> shared(&model, [](const body::Model*) {});
+  std::unique_ptr<body::MeasurementConstraints> constraints;
+  try {
+    constraints = std::make_unique<body::MeasurementConstraints>(shared, targets);
+  } catch (const std::invalid_argument& e) {
+    throw ArgError(std::string("--target: ") + e.what());
+  }
+  const auto result = constraints->solve(body::unit_from_betas(full));
+  if (!result.reached) throw std::runtime_error("--target: " + result.message);
+  std::cerr << "target: " << result.message << " (" << result.iterations << " steps, "
+            << result.evaluations << " bodies measured)\n";
+  return body::betas_from_unit(result.x);
 }
 
 void require_output_file(const std::string& path) {

@@ -31,6 +31,13 @@ constexpr double kMaxAbsBeta = 10.0;
 // +-kMaxAbsBeta.
 Eigen::VectorXf read_betas(const ArgParser& args, const body::Model& model);
 
+// --target name=value (repeatable; body/measurements.hpp names them): the betas nearest to
+// `start` whose measurements meet the targets (body/measurement_solve.hpp); `start` itself
+// without targets. Prints what was reached to stderr. Throws ArgError on a bad name or value
+// and std::runtime_error naming the nearest reachable values when the targets are out of reach.
+Eigen::VectorXf apply_targets(const ArgParser& args, const body::Model& model,
+                              const Eigen::VectorXf& start);
+
 // Number of values given with --betas or --x.
 std::size_t shape_value_count(const ArgParser& args);
 

@@ -47,10 +47,13 @@ void print_help() {
   std::cout
       << "usage: sequential-gallery export [--model FILE.npz] [--components N] [--expressions N]\n"
          "                                 [--betas B1 B2 ... | --x X1 X2 ...]\n"
+         "                                 [--target NAME=VALUE ...]\n"
          "                                 [--preset NAME] [--rest-pose a|t]\n"
          "                                 [--no-morph | --morph-betas] [--joint-names "
          "model|humanoid]\n"
          "                                 [--vrm-... meta options] -o OUT.glb|OUT.gltf|OUT.vrm\n\n"
+         "--target (repeatable): e.g. height=1.80 mass=85 (or 180cm, 187lb): the body nearest\n"
+         "to the given shape that meets them (names: see `measure --help`).\n\n"
          "Writes the body as glTF 2.0 (.glb binary, .gltf JSON) or as a VRM 1.0 avatar (.vrm):\n"
          "metres, y up, facing +Z, feet on the ground, a skeleton whose bones point along the\n"
          "limbs (each joint's +Y at its child), skin weights, UVs when the model has vt/ft.\n\n"
@@ -102,6 +105,7 @@ int run(int argc_in, char** argv_in) {
                        "expressions",
                        "betas",
                        "x",
+                       "target",
                        "no-morph",
                        "morph-betas",
                        "output",
@@ -172,7 +176,7 @@ int run(int argc_in, char** argv_in) {
 
   body::Model model = cli::load_body_model(args);
   if (options.rest_pose == body::RestPose::t || ext == ".vrm") body::load_pose_correctives(model);
-  const Eigen::VectorXf betas = cli::read_betas(args, model);
+  const Eigen::VectorXf betas = cli::apply_targets(args, model, cli::read_betas(args, model));
   const int targets = body::morph_target_count(model, options);
   if (targets > body::kManyMorphTargets) {
     std::cerr << "warning: writing " << targets << " morph targets (" << model.component_count()

@@ -15,12 +15,19 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery [gallery] [options]\n"
     "  --space body|photo      what to design: body shapes (default) or a photo's colours\n"
-    "  --model MODEL           female, male, neutral (built in; default neutral) or FILE.npz\n"
+    "  --model MODEL           female, male, neutral (built in) or FILE.npz; default: the\n"
+    "                          model last started in the window's New-search panel, at first\n"
+    "                          neutral\n"
     "  --image FILE            photo to enhance, PNG or JPEG (default: a built-in picture)\n"
-    "  --components K          shape components explored (default 10)\n"
+    "  --components K          shape components explored (default 10; a model with fewer\n"
+    "                          explores all it has, and says so)\n"
     "  --grid 3|5              grid size (default 3 for bodies, 5 for photos)\n"
     "  --clicks N              zoom clicks per plane (default 4)\n"
     "  --seed N                random seed of a new search (default 1)\n"
+    "  --target NAME=VALUE     (bodies; repeatable) start at the nearest body meeting it, e.g.\n"
+    "                          height=1.80 mass=85 (names: see `measure --help`)\n"
+    "  --hold NAME[=VALUE]     (bodies; repeatable) keep that measurement in every cell (a bare\n"
+    "                          name holds the current best's value); the window can toggle it\n"
     "  --session FILE          session autosave file (default\n"
     "                          $XDG_STATE_HOME/sequential-gallery/session.json)\n"
     "  --resume ask|yes|no     what to do with an existing session (default ask)\n"
@@ -73,11 +80,15 @@ int run(int argc, char** argv) {
                        "quit-after-screenshot",
                        "benchmark-clicks",
                        "report-layout",
-                       "optimizer-delay-ms"});
+                       "optimizer-delay-ms",
+                       "target",
+                       "hold"});
   app::GalleryOptions o;
   o.launch_time = launch;
   cli::read_gallery_display_options(args, 0, o);
   o.components = args.get_int("components", 10);
+  o.targets = args.get_all("target");
+  o.holds = args.get_all("hold");
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
   if (o.components < 1 || o.components > sps::kMaxSearchDims) {

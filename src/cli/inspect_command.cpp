@@ -21,7 +21,10 @@ int run(int argc, char** argv) {
   const std::string path = args.require("model");
   std::printf("file    %s\n", path.c_str());
   try {
-    const body::NpzArchive npz = body::NpzArchive::open_file(path);
+    // A built-in name means the embedded model, as everywhere else --model is taken.
+    const body::NpzArchive npz = body::is_builtin_model_name(path)
+                                     ? body::open_builtin_model_archive(path)
+                                     : body::NpzArchive::open_file(path);
     const auto entries = npz.list();
     std::printf("arrays  %zu\n", entries.size());
     for (const auto& e : entries) {
@@ -40,7 +43,7 @@ int run(int argc, char** argv) {
     return 1;
   }
   try {
-    body::Model m = body::load_model(path, 0);
+    body::Model m = body::resolve_model(path, 0);
     body::load_pose_correctives(m);
     std::printf("usable  yes: %d vertices, %d faces, %d joints (root '%s'), %d shape components\n",
                 m.vertex_count(), static_cast<int>(m.faces.rows()), m.joint_count(),

@@ -29,14 +29,20 @@ int run(int argc_in, char** argv_in) {
   if (args.has("help")) {
     std::cout << "usage: sequential-gallery measure [--model female|male|neutral|FILE.npz] "
                  "[--components N]\n"
-                 "                                  [--betas B1 B2 ... | --x X1 X2 ...]\n\n"
-                 "Prints height and chest, waist and hip circumferences (metres), measured\n"
-                 "as the convex hull of horizontal slices, as a tape measure does.\n";
+                 "                                  [--betas B1 B2 ... | --x X1 X2 ...]\n"
+                 "                                  [--target NAME=VALUE ...]\n\n"
+                 "Prints height, chest, waist and hip circumferences (metres; convex hull of\n"
+                 "horizontal slices, as a tape measure does), volume, mass, BMI, shoulder\n"
+                 "width, inseam and arm length (landmarks: src/body/measurements.hpp).\n\n"
+                 "--target NAME=VALUE (repeatable) measures the body nearest to the given shape\n"
+                 "that meets the targets instead: names height, mass, bmi, chest, waist, hips,\n"
+                 "shoulder_width, inseam, arm_length; values in m, kg, kg/m^2 or with a unit\n"
+                 "(180cm, 71in, 187lb).\n";
     return 0;
   }
-  args.reject_unknown({"model", "components", "betas", "x"});
+  args.reject_unknown({"model", "components", "betas", "x", "target"});
   const body::Model model = cli::load_body_model(args);
-  const Eigen::VectorXf betas = cli::read_betas(args, model);
+  const Eigen::VectorXf betas = cli::apply_targets(args, model, cli::read_betas(args, model));
   const body::Measurements m = body::measure(model, betas);
   std::printf("model   %s (%d components)\n", model.name.c_str(), model.component_count());
   std::printf("betas   [%s]\n", cli::format_betas(betas).c_str());
@@ -46,6 +52,17 @@ int run(int argc_in, char** argv_in) {
   line("hips", m.hips, m.hips_height);
   std::printf("volume  %.4f m^3  (%.1f l)\n", m.volume, 1000.0 * m.volume);
   std::printf("mass    %.1f kg  (volume x %.0f kg/m^3)\n", m.mass, body::kBodyDensity);
+  std::printf("bmi     %.1f kg/m^2\n", m.bmi);
+  const auto length = [](const char* label, double value, const char* why) {
+    if (std::isnan(value)) {
+      std::printf("%-15s n/a (%s)\n", label, why);
+    } else {
+      std::printf("%-15s %.4f m  (%.1f cm)\n", label, value, 100.0 * value);
+    }
+  };
+  length("shoulder_width", m.shoulder_width, "no left/right_shoulder joints");
+  length("inseam", m.inseam, "no crotch between two legs");
+  length("arm_length", m.arm_length, "no shoulder/elbow/wrist joints");
   return 0;
 }
 

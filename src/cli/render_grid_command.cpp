@@ -19,8 +19,12 @@ const char* const kUsage =
     "usage: sequential-gallery render-grid [--space body|photo] [--model FILE.npz|--image FILE]\n"
     "                                      [--grid 3|5] [--seed S] [--components K]\n"
     "                                      [--cell PX] [--samples N]\n"
+    "                                      [--target NAME=VALUE ...] [--hold NAME[=VALUE] ...]\n"
     "                                      [--cells-dir DIR] [--cells-csv FILE] -o GRID.png\n"
     "Renders the grid of the first plane of a new search (seed S) as the window draws it.\n"
+    "Bodies: --target (e.g. height=1.80 mass=85) starts the search at the nearest body that\n"
+    "meets it (the first plane is then the one proposed from there); --hold keeps a\n"
+    "measurement fixed in every cell (a bare name holds the start body's value).\n"
     "--cells-dir also writes each cell as DIR/cell_<row>_<col>.png; --cells-csv writes each\n"
     "cell's x (and, for bodies, its measurements in metres).\n";
 
@@ -31,7 +35,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   args.reject_unknown({"help", "space", "model", "image", "grid", "seed", "components", "cell",
-                       "samples", "cells-dir", "cells-csv", "o", "output"});
+                       "samples", "cells-dir", "cells-csv", "o", "output", "target", "hold"});
   const auto out = args.get("o") ? args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render-grid: -o GRID.png is required\n" + std::string(kUsage));
   app::SpaceSettings space_settings = spaces::default_settings(args.get_or("space", "body"));
@@ -62,7 +66,37 @@ int run(int argc, char** argv) {
     throw cli::ArgError("render-grid: --grid must be 3 or 5");
   }
   settings.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
-  const app::Session session(settings);
+  app::Session session(settings);
+  // As the window does for a new search (GalleryController::install_perception): the space's
+  // perceptual scale (which also picks the first plane) and distance.
+  const Eigen::VectorXd scale = space->perceptual_scale();
+  if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
+    session.set_perceptual_scale(scale);
+  }
+  session.set_perceptual_distance(space->perceptual_distance());
+  if (const auto targets = args.get_all("target"); !targets.empty()) {
+    app::TargetSolve solved;
+    try {
+      solved = space->solve_targets(targets, session.current_best());
+    } catch (const std::invalid_argument& e) {
+      throw cli::ArgError(std::string("render-grid: --target: ") + e.what());
+    }
+    if (!solved.reached) throw std::runtime_error("render-grid: --target: " + solved.message);
+    std::cerr << "target: " << solved.message << "\n";
+    // As the window's "Go": the solved body is preferred over the start, and the search
+    // continues from it.
+    sps::PlaneSearch search = session.search();
+    search.submit(solved.x, {}, {}, /*set_directly=*/true);
+    session.adopt_point(solved.x, std::move(search));
+  }
+  if (const auto holds = args.get_all("hold"); !holds.empty()) {
+    try {
+      session.set_constraint_projector(space->hold_projector(holds, session.current_best()));
+    } catch (const std::invalid_argument& e) {
+      throw cli::ArgError(std::string("render-grid: --hold: ") + e.what());
+    }
+    std::cerr << "hold: " << session.constraint_projector()->description() << "\n";
+  }
   const auto points = session.cells();
   const int n = settings.grid_size;
 

@@ -1,8 +1,11 @@
 #include "cli/simulate_body.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <random>
 #include <set>
 #include <sstream>
@@ -10,25 +13,20 @@
 
 #include "app/search_benchmark.hpp"
 #include "app/session.hpp"
+#include "body/measurements.hpp"
 #include "body/model_loader.hpp"
 #include "body/shape_distance.hpp"
 #include "cli/simulate_common.hpp"
+#include "spaces/body_holds.hpp"
 
 namespace cli {
 
 namespace {
 
-// --model FILE | neutral | female | male. Only the embedded default exists in this build;
-// the named models fall back to it with a note.
+// --model FILE | neutral | female | male (built in), as the window and the other commands.
 body::Model load_benchmark_model(const ArgParser& args, int components) {
   const std::string name = args.get_or("model", "neutral");
-  if (name == "neutral" || name == "default") return body::load_default_model(components);
-  if (name == "female" || name == "male") {
-    std::cerr << "note: no embedded '" << name
-              << "' model in this build; using the embedded default model\n";
-    return body::load_default_model(components);
-  }
-  return body::load_model(name, components);
+  return body::resolve_model(name == "default" ? "neutral" : name, components);
 }
 
 // Target betas i.i.d. N(0, 1) truncated to +-2.5 (rejection), from the trial's own stream.
@@ -46,16 +44,86 @@ Eigen::VectorXf random_target(int k, std::uint64_t seed) {
   return betas;
 }
 
+// Holds with a stopwatch: where the time of a held search goes (the plane's centre solve and
+// tangent directions, and the projection of each cell).
+struct HoldClock {
+  std::mutex mutex;
+  double plane_seconds = 0.0;
+  double cell_seconds = 0.0;
+  long planes = 0;
+  long cells = 0;
+};
+
+class TimedHeldPlane : public app::HeldPlane {
+ public:
+  TimedHeldPlane(std::shared_ptr<const app::HeldPlane> inner, std::shared_ptr<HoldClock> clock)
+      : inner_(std::move(inner)), clock_(std::move(clock)) {
+    plane = inner_->plane;
+  }
+  // Called from two threads at once (Session::cells_at): the clock has a lock.
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+    const auto t0 = std::chrono::steady_clock::now();
+    Eigen::VectorXd y = inner_->project(x);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::lock_guard<std::mutex> lock(clock_->mutex);
+    clock_->cell_seconds += seconds;
+    ++clock_->cells;
+    return y;
+  }
+
+ private:
+  std::shared_ptr<const app::HeldPlane> inner_;
+  std::shared_ptr<HoldClock> clock_;
+};
+
+class TimedProjector : public app::ConstraintProjector {
+ public:
+  TimedProjector(std::shared_ptr<const app::ConstraintProjector> inner,
+                 std::shared_ptr<HoldClock> clock)
+      : inner_(std::move(inner)), clock_(std::move(clock)) {}
+  std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto held = inner_->hold(plane);
+    clock_->plane_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++clock_->planes;
+    return std::make_shared<TimedHeldPlane>(std::move(held), clock_);
+  }
+  std::string description() const override { return inner_->description(); }
+
+ private:
+  std::shared_ptr<const app::ConstraintProjector> inner_;
+  std::shared_ptr<HoldClock> clock_;
+};
+
 }  // namespace
 
 int run_body_simulation(const ArgParser& args) {
-  std::set<std::string> known{"function",     "model",         "components",
-                              "target",       "target-betas",  "user",
-                              "jnd-mm",       "trials",        "iterations",
-                              "seed",         "grid",          "levels",
-                              "csv",          "per-trial-csv", "quiet",
-                              "no-adapt",     "distinct-mm",   "no-perceptual-scale",
-                              "min-plane-mm", "perceptual-ls"};
+  std::set<std::string> known{"function",
+                              "model",
+                              "components",
+                              "target",
+                              "target-betas",
+                              "user",
+                              "jnd-mm",
+                              "trials",
+                              "iterations",
+                              "seed",
+                              "grid",
+                              "levels",
+                              "csv",
+                              "per-trial-csv",
+                              "quiet",
+                              "no-adapt",
+                              "distinct-mm",
+                              "no-perceptual-scale",
+                              "min-plane-mm",
+                              "no-perceptual-ls",
+                              "perceptual-btl",
+                              "no-mean-centre",
+                              "compare-mm",
+                              "hold"};
   known.insert(search_option_names().begin(), search_option_names().end());
   args.reject_unknown(known);
   const std::string user = args.get_or("user", "zoom-jnd");
@@ -87,7 +155,16 @@ int run_body_simulation(const ArgParser& args) {
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
     throw ArgError("--min-plane-mm must be in [0, 10000)");
   }
-  options.perceptual_length_scales = args.has("perceptual-ls");
+  options.perceptual_length_scales = !args.has("no-perceptual-ls");
+  options.centre_on_mean_maximum = !args.has("no-mean-centre");
+  options.perceptual_btl_scale = args.get_double("perceptual-btl", options.perceptual_btl_scale);
+  if (!(options.perceptual_btl_scale >= 1e-8 && options.perceptual_btl_scale <= 1e3)) {
+    throw ArgError("--perceptual-btl must be in [1e-8, 1000]");
+  }
+  policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
+  if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {
+    throw ArgError("--compare-mm must be in [0, 10000)");
+  }
 
   const body::Model model = load_benchmark_model(args, components);
   const int k = model.component_count();
@@ -106,6 +183,17 @@ int run_body_simulation(const ArgParser& args) {
       fixed_target[static_cast<Eigen::Index>(i)] = static_cast<float>(b[i]);
     }
   }
+  // --hold NAME (repeatable): every grid keeps the target body's NAME (the user knows it).
+  const auto hold_names = args.get_all("hold");
+  std::shared_ptr<const body::Model> hold_model;
+  for (const auto& name : hold_names) {
+    if (body::find_measurement(name) == nullptr) {
+      throw ArgError("--hold: unknown measurement '" + name +
+                     "' (known: " + body::measurement_names() + ")");
+    }
+  }
+  if (!hold_names.empty()) hold_model = std::make_shared<const body::Model>(model);
+  const auto clock = std::make_shared<HoldClock>();
   const app::PairwiseDistance pairwise = [&distance](const std::vector<Eigen::VectorXd>& xs) {
     return distance.pairwise_max_mm(xs);
   };
@@ -124,6 +212,15 @@ int run_body_simulation(const ArgParser& args) {
     settings.zoom_levels = levels;
     settings.seed = trial_seed;
     app::Session session(settings, options);
+    if (hold_model) {
+      std::vector<std::string> holds;
+      const body::Measurements m = body::measure(model, target);
+      for (const auto& name : hold_names) {
+        holds.push_back(name + "=" + std::to_string(m.*(body::find_measurement(name)->field)));
+      }
+      session.set_constraint_projector(std::make_shared<TimedProjector>(
+          spaces::make_body_holds(hold_model, holds, session.current_best()), clock));
+    }
     if (perceptual_scale) session.set_perceptual_scale(distance.direction_rms_mm());
     if (adapt) session.set_perceptual_distance(pairwise, policy);
     std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
@@ -142,6 +239,12 @@ int run_body_simulation(const ArgParser& args) {
     if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
   }
   if (!quiet) std::cerr << "\n";
+  if (clock->planes > 0) {
+    std::cerr << "holds: " << clock->planes << " held planes, "
+              << 1000.0 * clock->plane_seconds / clock->planes
+              << " ms each (centre solve + tangent); " << clock->cells << " cells projected, "
+              << 1000.0 * clock->cell_seconds / std::max(1L, clock->cells) << " ms each\n";
+  }
 
   std::ostringstream title;
   title << "# " << sps::method_name(options.method) << " on body (" << model.name << ", " << k
@@ -151,6 +254,9 @@ int run_body_simulation(const ArgParser& args) {
         << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "
         << seed << "-" << (seed + trials - 1) << "; gap = RMS vertex distance (mm) of the best "
         << "body so far";
+  for (std::size_t i = 0; i < hold_names.size(); ++i) {
+    title << (i == 0 ? "; holding the target's " : ", ") << hold_names[i];
+  }
   write_simulation_results(args, title.str(), results);
   return 0;
 }

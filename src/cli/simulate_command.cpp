@@ -65,7 +65,10 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --distinct-mm D     the session's smallest difference between cells (default 10)
   --no-perceptual-scale  do not tell the optimizer how much each direction changes the body
   --min-plane-mm L    with the perceptual scale: smallest RMS length of u and v (default 12)
-  --perceptual-ls     also scale the length-scale priors by it (off: measured worse)
+  --no-perceptual-ls  do not scale the length-scale priors by it
+  --no-mean-centre    centre planes on the best observed point, not the posterior-mean maximum
+  --perceptual-btl S  with the perceptual scale: the BTL temperature (default 1; plain 0.01)
+  --compare-mm D      zoom-level clicks count only over cells differing by >= D mm (default 40)
 
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
@@ -80,10 +83,10 @@ functions:
 }
 
 int run(int argc, char** argv) {
-  const cli::ArgParser args(
-      argc, argv,
-      {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale", "perceptual-ls"},
-      {"target-betas"});
+  const cli::ArgParser args(argc, argv,
+                            {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale",
+                             "no-perceptual-ls", "no-mean-centre"},
+                            {"target-betas"});
   if (args.has("help")) {
     print_help();
     return 0;

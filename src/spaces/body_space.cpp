@@ -2,14 +2,19 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "body/gltf_export.hpp"
+#include "body/measurement_solve.hpp"
 #include "body/measurements.hpp"
 #include "body/model_loader.hpp"
 #include "render/body_renderer.hpp"
 #include "render/mesh_gpu.hpp"
+#include "spaces/body_holds.hpp"
 #include "spaces/body_scene.hpp"
 
 namespace spaces {
@@ -50,24 +55,42 @@ class BodyContent : public app::CellContent {
   render::MeshGpu gpu_;
 };
 
-std::string centimetres(double m) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f cm", m * 100.0);
-  return text;
-}
-
-std::string signed_centimetres(double m) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%+.1f cm", m * 100.0);
-  return text;
-}
-
 }  // namespace
 
 BodySpace::BodySpace(body::Model model, std::string source)
     : model_(std::move(model)),
       source_(std::move(source)),
       distance_(std::make_shared<const body::ShapeDistance>(model_)) {}
+
+std::vector<std::string> BodySpace::measurement_names() const {
+  std::vector<std::string> names;
+  for (const auto& k : body::measurement_kinds()) names.emplace_back(k.name);
+  return names;
+}
+
+namespace {
+
+std::vector<body::MeasurementTarget> parse_all(const std::vector<std::string>& texts) {
+  std::vector<body::MeasurementTarget> targets;
+  for (const auto& text : texts) targets.push_back(body::parse_target(text, true));
+  return targets;
+}
+
+}  // namespace
+
+std::shared_ptr<const app::ConstraintProjector> BodySpace::hold_projector(
+    const std::vector<std::string>& holds, const Eigen::VectorXd& reference) const {
+  if (!shared_model_) shared_model_ = std::make_shared<const body::Model>(model_);
+  return make_body_holds(shared_model_, holds, reference);
+}
+
+app::TargetSolve BodySpace::solve_targets(const std::vector<std::string>& texts,
+                                          const Eigen::VectorXd& start) const {
+  if (!shared_model_) shared_model_ = std::make_shared<const body::Model>(model_);
+  const body::MeasurementConstraints constraints(shared_model_, parse_all(texts));
+  const auto result = constraints.solve(start);
+  return {result.x, result.reached, result.message};
+}
 
 app::PairwiseDistance BodySpace::perceptual_distance() const {
   // The hook holds the distance itself, so a session copied into the redo stack stays valid
@@ -85,9 +108,19 @@ BodySpace::~BodySpace() = default;
 
 std::unique_ptr<BodySpace> BodySpace::open(const app::SpaceSettings& settings) {
   if (settings.dimensions < 1) throw body::ModelError("a body space needs at least 1 component");
-  body::Model model = settings.source.empty()
-                          ? body::load_default_model(settings.dimensions)
-                          : body::load_model(settings.source, settings.dimensions);
+  // SMPL's own .pkl holds Python objects; say how to convert it instead of "not a zip archive".
+  std::string ext = std::filesystem::path(settings.source).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  if (ext == ".pkl" && !body::is_builtin_model_name(settings.source)) {
+    throw body::ModelError(
+        settings.source +
+        ": a .pkl model cannot be read directly; convert it once with "
+        "`python3 tools/smpl_pkl_to_npz.py FILE.pkl FILE.npz` and open the .npz");
+  }
+  // resolve_model, as --model: a built-in name always means the built-in model, even when the
+  // current folder holds a file or folder of that name.
+  body::Model model = body::resolve_model(settings.source, settings.dimensions);
   return std::make_unique<BodySpace>(std::move(model), settings.source);
 }
 
@@ -96,8 +129,18 @@ app::SpaceSettings BodySpace::settings() const {
 }
 
 std::string BodySpace::description() const {
-  return "body model " + (source_.empty() ? std::string("(default)") : source_) + " \"" +
-         model_.name + "\", " + std::to_string(model_.component_count()) + " components";
+  if (source_.empty() || body::is_builtin_model_name(source_)) {
+    return "body model " + source_label() + ", " + std::to_string(model_.component_count()) +
+           " components";
+  }
+  return "body model " + source_ + " \"" + model_.name + "\", " +
+         std::to_string(model_.component_count()) + " components";
+}
+
+std::string BodySpace::source_label() const {
+  if (source_.empty()) return "neutral (built-in)";
+  if (body::is_builtin_model_name(source_)) return source_ + " (built-in)";
+  return std::filesystem::path(source_).filename().string();
 }
 
 std::string BodySpace::dimension_name(int i) const {
@@ -148,39 +191,123 @@ void BodySpace::draw_inspector(const app::PreparedCell& shown, const char* shown
   const body::Measurements ma = a.measurements.value_or(body::Measurements{});
   const body::Measurements mb =
       b != nullptr ? b->measurements.value_or(body::Measurements{}) : body::Measurements{};
-  const struct {
-    const char* name;
-    double a, b;
-  } rows[] = {{"Height", ma.height, mb.height},
-              {"Chest", ma.chest, mb.chest},
-              {"Waist", ma.waist, mb.waist},
-              {"Hips", ma.hips, mb.hips}};
-  for (const auto& r : rows) {
+  for (const auto& k : body::measurement_kinds()) {
+    const double va = ma.*k.field, vb = mb.*k.field;
+    const auto metric = body::Units::kMetric;
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
-    ImGui::TextUnformatted(r.name);
+    ImGui::TextUnformatted(k.label);
     ImGui::TableSetColumnIndex(1);
-    ImGui::TextUnformatted(a.measurements ? centimetres(r.a).c_str() : "...");
+    ImGui::TextUnformatted(a.measurements ? body::format_measurement(k.quantity, va, metric).c_str()
+                                          : "...");
     if (b != nullptr) {
       ImGui::TableSetColumnIndex(2);
-      ImGui::TextUnformatted(b->measurements ? centimetres(r.b).c_str() : "...");
+      ImGui::TextUnformatted(
+          b->measurements ? body::format_measurement(k.quantity, vb, metric).c_str() : "...");
       ImGui::TableSetColumnIndex(3);
       if (a.measurements && b->measurements) {
-        ImGui::TextUnformatted(signed_centimetres(r.a - r.b).c_str());
+        ImGui::TextUnformatted(body::format_difference(k.quantity, va - vb, metric).c_str());
       }
     }
   }
   ImGui::EndTable();
 }
 
+app::MeasurementPanelRequest BodySpace::draw_measurement_panel(
+    const app::PreparedCell* best, const app::PreparedCell* start, const app::PreparedCell* hovered,
+    const std::vector<std::string>& holds, app::MeasurementPanelState& state) const {
+  app::MeasurementPanelRequest request;
+  const auto& kinds = body::measurement_kinds();
+  state.target_text.resize(kinds.size());
+  const auto units = state.imperial ? body::Units::kImperial : body::Units::kMetric;
+  ImGui::TextUnformatted("Units:");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("metric", !state.imperial)) state.imperial = false;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("imperial", state.imperial)) state.imperial = true;
+  const auto held_name = [](const std::string& text) { return text.substr(0, text.find('=')); };
+  const BodyCell* columns[3] = {static_cast<const BodyCell*>(best),
+                                static_cast<const BodyCell*>(start),
+                                static_cast<const BodyCell*>(hovered)};
+  if (ImGui::BeginTable(
+          "measurement panel", 6,
+          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+    ImGui::TableSetupColumn("");
+    ImGui::TableSetupColumn("current");
+    ImGui::TableSetupColumn("start");
+    ImGui::TableSetupColumn("hovered");
+    ImGui::TableSetupColumn("hold");
+    ImGui::TableSetupColumn("target", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableHeadersRow();
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+      const auto& k = kinds[i];
+      ImGui::PushID(static_cast<int>(i));
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(k.label);
+      for (int c = 0; c < 3; ++c) {
+        ImGui::TableSetColumnIndex(c + 1);
+        const BodyCell* cell = columns[c];
+        if (cell == nullptr) continue;
+        ImGui::TextUnformatted(
+            cell->measurements
+                ? body::format_measurement(k.quantity, (*cell->measurements).*k.field, units)
+                      .c_str()
+                : "...");
+      }
+      ImGui::TableSetColumnIndex(4);
+      bool held = std::any_of(holds.begin(), holds.end(),
+                              [&](const std::string& h) { return held_name(h) == k.name; });
+      if (ImGui::Checkbox("##hold", &held)) {
+        std::vector<std::string> next;
+        for (const auto& h : holds) {
+          if (held_name(h) != k.name) next.push_back(h);
+        }
+        if (held) next.emplace_back(k.name);
+        request.holds = next;
+      }
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Hold %s: every cell keeps the current best's value", k.label);
+      }
+      ImGui::TableSetColumnIndex(5);
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%s", state.target_text[i].c_str());
+      ImGui::SetNextItemWidth(-1.0f);
+      if (ImGui::InputTextWithHint("##target",
+                                   state.imperial ? k.example_imperial : k.example_metric, buffer,
+                                   sizeof buffer)) {
+        state.target_text[i] = buffer;
+      }
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  std::vector<std::string> targets;
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    std::string text = state.target_text[i];
+    text.erase(std::remove(text.begin(), text.end(), ' '), text.end());
+    if (!text.empty()) targets.push_back(std::string(kinds[i].name) + "=" + text);
+  }
+  ImGui::BeginDisabled(targets.empty());
+  if (ImGui::Button("Go")) request.targets = targets;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::TextDisabled("the nearest body meeting the typed targets");
+  return request;
+}
+
 std::vector<std::pair<std::string, double>> BodySpace::numbers(
     const app::PreparedCell& cell) const {
   const auto& b = static_cast<const BodyCell&>(cell);
   if (!b.measurements) return {};
-  return {{"height_m", b.measurements->height},
-          {"chest_m", b.measurements->chest},
-          {"waist_m", b.measurements->waist},
-          {"hips_m", b.measurements->hips}};
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& k : body::measurement_kinds()) {
+    const char* unit = k.quantity == body::Quantity::kLength ? "_m"
+                       : k.quantity == body::Quantity::kMass ? "_kg"
+                                                             : "";
+    out.emplace_back(std::string(k.name) + unit, (*b.measurements).*k.field);
+  }
+  return out;
 }
 
 std::string BodySpace::export_point(const Eigen::VectorXd& x,

@@ -21,11 +21,14 @@ class BodySpace : public app::DesignSpace {
   // `source`: the .npz it came from ("" = the embedded default model).
   BodySpace(body::Model model, std::string source);
   ~BodySpace() override;
-  // Loads the model (components = settings.dimensions); throws body::ModelError.
+  // Loads the model (components = settings.dimensions): a built-in model's name (female, male,
+  // neutral; empty = neutral) or a file, as --model does. Throws body::ModelError naming the
+  // file and the problem.
   static std::unique_ptr<BodySpace> open(const app::SpaceSettings& settings);
 
   app::SpaceSettings settings() const override;
   std::string description() const override;
+  std::string source_label() const override;
   std::string dimension_name(int i) const override;
   int default_grid_size() const override { return 3; }
   bool uses_camera() const override { return true; }
@@ -42,6 +45,16 @@ class BodySpace : public app::DesignSpace {
   std::string export_point(const Eigen::VectorXd& x,
                            const std::filesystem::path& path) const override;
 
+  std::vector<std::string> measurement_names() const override;
+  std::shared_ptr<const app::ConstraintProjector> hold_projector(
+      const std::vector<std::string>& holds, const Eigen::VectorXd& reference) const override;
+  app::MeasurementPanelRequest draw_measurement_panel(
+      const app::PreparedCell* best, const app::PreparedCell* start,
+      const app::PreparedCell* hovered, const std::vector<std::string>& holds,
+      app::MeasurementPanelState& state) const override;
+  app::TargetSolve solve_targets(const std::vector<std::string>& targets,
+                                 const Eigen::VectorXd& start) const override;
+
   app::PairwiseDistance perceptual_distance() const override;
   Eigen::VectorXd perceptual_scale() const override;
 
@@ -50,6 +63,9 @@ class BodySpace : public app::DesignSpace {
  private:
   body::Model model_;
   std::string source_;
+  // The same model for projectors and solves that may outlive this space (a session in the
+  // redo stack); made on first use.
+  mutable std::shared_ptr<const body::Model> shared_model_;
   std::shared_ptr<const body::ShapeDistance> distance_;  // shared with the session's hook
   std::shared_ptr<render::BodyRenderer> renderer_;       // made on the GL thread, shared by cells
 };

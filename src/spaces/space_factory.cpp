@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "body/model_loader.hpp"
 #include "spaces/body_space.hpp"
 #include "spaces/photo_space.hpp"
 
@@ -10,6 +11,17 @@ namespace spaces {
 const std::vector<std::string>& space_kinds() {
   static const std::vector<std::string> kinds{"body", "photo"};
   return kinds;
+}
+
+const std::vector<std::string>& builtin_body_models() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> ordered{"neutral"};
+    for (const auto& name : body::builtin_model_names()) {
+      if (name != "neutral") ordered.push_back(name);
+    }
+    return ordered;
+  }();
+  return names;
 }
 
 app::SpaceSettings default_settings(const std::string& kind) {

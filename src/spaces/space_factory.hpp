@@ -16,6 +16,11 @@ std::unique_ptr<app::DesignSpace> open_space(const app::SpaceSettings& settings)
 // The kinds open_space() knows, for --help and the window's picker.
 const std::vector<std::string>& space_kinds();
 
+// The built-in body models a body search can start on, in the window picker's order: neutral
+// (the default) first, then female and male. A SpaceSettings source of one of these names (or
+// empty, for neutral) means that built-in model; any other source is a model file.
+const std::vector<std::string>& builtin_body_models();
+
 // What a new search in `kind` starts with: its dimension count (the body default 10).
 app::SpaceSettings default_settings(const std::string& kind);
 

@@ -132,4 +132,37 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
   return best->x;
 }
 
+Eigen::VectorXd maximize_posterior_mean(const PreferenceModel& model,
+                                        const Eigen::VectorXd& fallback, int starts,
+                                        int max_iterations, int threads) {
+  const int n = model.point_count();
+  if (n == 0) return fallback;
+  const int d = model.dims();
+  Eigen::VectorXd means, variances;
+  model.predict_batch(model.points(), means, variances, nullptr, nullptr);
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  const int count = std::max(1, std::min(starts, n));
+  std::partial_sort(order.begin(), order.begin() + count, order.end(), [&](int a, int b) {
+    return means(a) > means(b) || (means(a) == means(b) && a < b);
+  });
+  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
+  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
+  std::vector<MaximizeResult> results(static_cast<std::size_t>(count));
+  parallel_for(count, threads, [&](int s) {
+    const Objective fn = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+      double mean = 0.0, variance = 0.0;
+      model.predict(x, mean, variance, &grad, nullptr);
+      return mean;
+    };
+    results[static_cast<std::size_t>(s)] =
+        maximize_bounded(fn, model.points().col(order[static_cast<std::size_t>(s)]), lower, upper,
+                         max_iterations, 1e-9);
+  });
+  const auto best = std::max_element(
+      results.begin(), results.end(),
+      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
+  return best->x;
+}
+
 }  // namespace sps

@@ -31,4 +31,11 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
                                               const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
                                               const EiSearchSettings& settings);
 
+// argmax of the posterior mean over [0,1]^d by local searches from the observed points with
+// the largest means (the model's best estimate, which may lie between observations). Returns
+// `fallback` when the model has no data.
+Eigen::VectorXd maximize_posterior_mean(const PreferenceModel& model,
+                                        const Eigen::VectorXd& fallback, int starts = 4,
+                                        int max_iterations = 60, int threads = 2);
+
 }  // namespace sps

@@ -172,7 +172,8 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
   }
   plane.v = v;
   if (settings.perceptual_scale.size() == d) {
-    shape_for_person(plane, settings.perceptual_scale, settings.min_plane_length);
+    shape_for_person(plane, settings.perceptual_scale, settings.min_plane_length,
+                     settings.keep_centre);
   }
   return plane;
 }
@@ -240,9 +241,10 @@ Eigen::VectorXd visible_direction(const Eigen::VectorXd& c, const Eigen::VectorX
 
 }  // namespace
 
-void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length) {
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length,
+                      bool keep_centre) {
   const Eigen::Index d = plane.c.size();
-  if (plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
+  if (!keep_centre && plane.u_neg_scale < 0.5 && plane.u.norm() > 1e-9) {
     // c + u/2 +- u/2 spans c .. c + u, all inside the box (both ends are).
     plane.c = plane.c + 0.5 * plane.u;
     plane.u = 0.5 * plane.u;

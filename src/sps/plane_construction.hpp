@@ -35,6 +35,7 @@ struct PlaneSearchSettings {
   int threads = 2;
   Eigen::VectorXd perceptual_scale;  // empty, or SearchOptions::perceptual_scale
   double min_plane_length = 0.0;     // SearchOptions::min_plane_length
+  bool keep_centre = false;          // c stays x+ (a point the user set directly)
 };
 
 // The person-friendly plane shape used with a perceptual scale (see SearchOptions): when c
@@ -43,7 +44,9 @@ struct PlaneSearchSettings {
 // `min_length` in `scale` units where the box allows, or replaced by the visible part of its
 // direction when it is invisible; v is made orthogonal to u in the perceptual metric and as
 // long as min_length and half of u, within the coordinates that leave room.
-void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length);
+// With keep_centre the plane is never moved forward (c stays where it is).
+void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length,
+                      bool keep_centre = false);
 
 Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
                 const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,

@@ -131,6 +131,7 @@ void validate_options(const SearchOptions& o) {
           "length_scale_prior must lie in [1e-6, 1e6]");
   require(in(m.prior_log_variance, 1e-8, 100.0), "prior_log_variance must lie in [1e-8, 100]");
   require(in(m.btl_scale, 1e-8, 1e3), "btl_scale must lie in [1e-8, 1000]");
+  require(in(o.perceptual_btl_scale, 1e-8, 1e3), "perceptual_btl_scale must lie in [1e-8, 1000]");
   require(in(m.noise_variance, 1e-12, 1.0), "noise_variance must lie in [1e-12, 1]");
   require(m.max_hyper_iterations >= 0 && m.max_hyper_iterations <= 100000,
           "max_hyper_iterations must be 0-100000");
@@ -172,7 +173,8 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
     : options_(validated(options)),
       rng_(options.seed),
       data_(options.dims),
-      model_(std::make_shared<PreferenceModel>(options.dims, options.model)) {
+      model_(std::make_shared<PreferenceModel>(options.dims, options.model)),
+      plain_btl_scale_(options.model.btl_scale) {
   plane_ = first_plane(options_.dims, rng_);
   const Eigen::VectorXd scale = options_.perceptual_scale;
   set_perceptual_scale(scale);
@@ -182,6 +184,7 @@ void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);
     options_.model.length_scale_factors.resize(0);
+    options_.model.btl_scale = plain_btl_scale_;
     return;
   }
   if (scale.size() != options_.dims || !scale.allFinite() || (scale.array() <= 0.0).any()) {
@@ -189,19 +192,70 @@ void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
                                 " positive finite entries");
   }
   options_.perceptual_scale = scale;
+  options_.model.btl_scale = options_.perceptual_btl_scale;
   // Relative to the geometric mean, so the overall prior is unchanged; limited to a factor of
-  // 4 either way so that no direction is frozen or ignored entirely.
+  // 16 either way so that no direction is frozen or ignored entirely (the default body
+  // model's directions span 22-354 mm, a factor of 4.6 either side of their mean).
   const double mean_log = scale.array().log().mean();
   if (options_.perceptual_length_scales) {
     options_.model.length_scale_factors =
-        (mean_log - scale.array().log()).exp().max(0.25).min(4.0).matrix();
+        (mean_log - scale.array().log()).exp().max(1.0 / 16.0).min(16.0).matrix();
   } else {
     options_.model.length_scale_factors.resize(0);
   }
 }
 
+std::vector<std::pair<double, double>> PlaneSearch::representative_coordinates() const {
+  std::vector<std::pair<double, double>> st{{0.0, 0.0}, {1.0, 1.0}};
+  if (!plane_.is_line()) {
+    st.insert(st.end(), {{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}});
+    if (options_.representatives >= 9)
+      st.insert(st.end(), {{-1.0, 0.0}, {0.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}});
+  }
+  return st;
+}
+
+Plane visible_first_plane(const Eigen::VectorXd& scale) {
+  const Eigen::Index d = scale.size();
+  Plane p;
+  p.c = Eigen::VectorXd::Constant(d, 0.5);
+  p.u = Eigen::VectorXd::Zero(d);
+  p.v = Eigen::VectorXd::Zero(d);
+  if (d == 0) return p;
+  Eigen::Index first = 0;
+  for (Eigen::Index k = 1; k < d; ++k) {
+    if (scale(k) > scale(first)) first = k;
+  }
+  p.u(first) = kVisibleFirstPlaneExtent;
+  if (d > 1) {
+    Eigen::Index second = first == 0 ? 1 : 0;
+    for (Eigen::Index k = 0; k < d; ++k) {
+      if (k != first && scale(k) > scale(second)) second = k;
+    }
+    p.v(second) = kVisibleFirstPlaneExtent;
+  } else {
+    // A line (SLS-style segment) needs u to span both sides: c - u .. c + u is not a line's
+    // meaning (c .. c + u), so start at the lower end instead.
+    p.c(0) = 0.5 - kVisibleFirstPlaneExtent;
+    p.u(0) = 2.0 * kVisibleFirstPlaneExtent;
+    p.u_neg_scale = 0.0;
+  }
+  return p;
+}
+
+bool PlaneSearch::use_visible_first_plane() {
+  if (options_.perceptual_scale.size() != options_.dims || !history_.empty() ||
+      data_.point_count() > 0) {
+    return false;
+  }
+  plane_ = visible_first_plane(options_.perceptual_scale);
+  return true;
+}
+
 void PlaneSearch::submit(const Eigen::VectorXd& chosen,
-                         const std::vector<std::vector<Eigen::VectorXd>>& extra_comparisons) {
+                         const std::vector<std::vector<Eigen::VectorXd>>& extra_comparisons,
+                         const std::vector<Eigen::VectorXd>& shown_representatives,
+                         bool set_directly) {
   const auto start = std::chrono::steady_clock::now();
   if (chosen.size() != options_.dims) {
     throw std::invalid_argument("the chosen point has " + std::to_string(chosen.size()) +
@@ -212,6 +266,19 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
     for (const auto& x : comparison) {
       if (x.size() != options_.dims || !x.allFinite()) {
         throw std::invalid_argument("an extra comparison holds a malformed point");
+      }
+    }
+  }
+  if (!shown_representatives.empty()) {
+    const std::size_t expected = representative_coordinates().size();
+    if (shown_representatives.size() != expected) {
+      throw std::invalid_argument("expected " + std::to_string(expected) +
+                                  " shown representatives, got " +
+                                  std::to_string(shown_representatives.size()));
+    }
+    for (const auto& r : shown_representatives) {
+      if (r.size() != options_.dims || !r.allFinite()) {
+        throw std::invalid_argument("a shown representative is a malformed point");
       }
     }
   }
@@ -232,6 +299,12 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
       }
     }
   }
+  if (!shown_representatives.empty()) {
+    representatives.clear();
+    for (const auto& r : shown_representatives) {
+      representatives.push_back(r.cwiseMax(0.0).cwiseMin(1.0));
+    }
+  }
   data_.add_preference(x, representatives);
   for (const auto& comparison : extra_comparisons) {
     if (comparison.size() < 2) continue;
@@ -241,7 +314,7 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
   try {
     model_ =
         std::make_shared<PreferenceModel>(PreferenceModel::fit(data_, options_.model, *model_));
-    propose_next_plane(x);
+    propose_next_plane(x, set_directly);
     // Never keep a state that could not be saved and read back (from_json's limits): go back
     // to the state before this submission instead.
     const KernelParams& p = model_->params();
@@ -268,11 +341,16 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice) {
+void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly) {
   Eigen::VectorXd x_plus = last_choice;
-  if (options_.current_best == CurrentBest::kPosteriorMean) {
+  // A point the user set directly is where the search goes on from, as they asked.
+  if (!set_directly && options_.current_best == CurrentBest::kPosteriorMean) {
     const int best = model_->best_observed_index();
     if (best >= 0) x_plus = model_->points().col(best);
+  }
+  if (!set_directly && options_.centre_on_mean_maximum &&
+      options_.perceptual_scale.size() == options_.dims) {
+    x_plus = maximize_posterior_mean(*model_, x_plus, 4, 60, options_.threads);
   }
   if (options_.method == Method::kSpsRandom) {
     plane_ = random_plane(x_plus, rng_);
@@ -292,6 +370,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice) {
   ps.threads = options_.threads;
   ps.perceptual_scale = options_.perceptual_scale;
   ps.min_plane_length = options_.min_plane_length;
+  ps.keep_centre = set_directly;
   plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps);
 }
 
@@ -315,6 +394,9 @@ void PlaneSearch::start_over() {
   history_.clear();
   ++start_overs_;
   plane_ = first_plane(options_.dims, rng_);
+  if (options_.perceptual_scale.size() == options_.dims) {
+    plane_ = visible_first_plane(options_.perceptual_scale);
+  }
 }
 
 bool PlaneSearch::undo() {
@@ -367,6 +449,9 @@ std::string PlaneSearch::to_json() const {
     j["options"]["perceptual_scale"] = vec_to_json(options_.perceptual_scale);
     j["options"]["min_plane_length"] = options_.min_plane_length;
     j["options"]["perceptual_length_scales"] = options_.perceptual_length_scales;
+    j["options"]["centre_on_mean_maximum"] = options_.centre_on_mean_maximum;
+    j["options"]["perceptual_btl_scale"] = options_.perceptual_btl_scale;
+    j["options"]["plain_btl_scale"] = plain_btl_scale_;
   }
   j["rng"] = rng_state();
   json points = json::array();
@@ -454,7 +539,17 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
         options.min_plane_length =
             double_from_json(o.at("min_plane_length"), "min_plane_length", 0.0, 1e4);
       }
+      // Files from before these options were searched with the paper's centre and sharp
+      // likelihood and without perceptual length scales; they keep that behaviour.
       options.perceptual_length_scales = o.value("perceptual_length_scales", false);
+      options.centre_on_mean_maximum = o.value("centre_on_mean_maximum", false);
+      options.perceptual_btl_scale =
+          o.contains("perceptual_btl_scale")
+              ? double_from_json(o.at("perceptual_btl_scale"), "perceptual_btl_scale", 1e-8, 1e3)
+              : ms.btl_scale;
+      if (o.contains("plain_btl_scale")) {
+        ms.btl_scale = double_from_json(o.at("plain_btl_scale"), "plain_btl_scale", 1e-8, 1e3);
+      }
     }
     PlaneSearch search(options);
     const int d = options.dims;
@@ -507,9 +602,9 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     const Eigen::VectorXd latent =
         vec_from_json(j.at("latent"), "latent", window_points(n, search.data_.preference_count()),
                       -kMaxLatent, kMaxLatent);
-    search.model_ =
-        n == 0 ? std::make_shared<PreferenceModel>(d, options.model)
-               : std::make_shared<PreferenceModel>(search.data_, options.model, params, latent);
+    search.model_ = n == 0 ? std::make_shared<PreferenceModel>(d, search.options_.model)
+                           : std::make_shared<PreferenceModel>(search.data_, search.options_.model,
+                                                               params, latent);
     search.plane_ = plane_from_json(j.at("plane"), d);
     const json& history = j.at("history");
     if (!history.is_array() || static_cast<long long>(history.size()) > kMaxStoredPreferences) {

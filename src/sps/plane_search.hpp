@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -52,10 +53,32 @@ struct SearchOptions {
   // that a plane always shows differences a person can see; and whether the length-scale
   // priors follow the scale.
   double min_plane_length = 12.0;
-  // Measured on the body benchmark: shorter length scales for visible directions pinned more
-  // coordinates and did not lower the gap, so it is off by default.
-  bool perceptual_length_scales = false;
+  // The length-scale prior of each direction is inversely proportional to how visible it is
+  // (within a factor of 16 of the geometric mean), so the model expects the goodness to change
+  // as fast along every direction per millimetre of visible change. Measured on the body
+  // benchmark together with the two options below (docs/benchmarks.md); alone, with the
+  // paper's centre and sharp likelihood, it pinned coordinates and did not help.
+  bool perceptual_length_scales = true;
+  // With a perceptual scale: the plane is centred on the maximum of the posterior mean (the
+  // model's best estimate, which averages many noisy clicks) instead of the observed point
+  // with the largest mean (a single click, which for a person is often a guess between cells
+  // that look equally good).
+  bool centre_on_mean_maximum = true;
+  // With a perceptual scale: the BTL temperature used instead of model.btl_scale. A person
+  // cannot rank bodies that differ by less than a few millimetres, so their clicks are noisy
+  // and a soft likelihood (the data as weak evidence that many clicks average out) fits them;
+  // the sharp 0.01 treats every click as certain and the model chases the noise.
+  double perceptual_btl_scale = 1.0;
 };
+
+// The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane
+// spans the two most visible directions over +-2.4 standard deviations for a body model.
+constexpr double kVisibleFirstPlaneExtent = 0.4;
+
+// The first plane with a perceptual scale (Design Galleries' idea of a first choice among
+// the most different designs): centred at 0.5, u along the most visible coordinate and v along
+// the second, each kVisibleFirstPlaneExtent long. A line along the first with one dimension.
+Plane visible_first_plane(const Eigen::VectorXd& scale);
 
 // The largest search space a session may have (the paper explores up to ~20 dimensions; more
 // is not searchable by clicking and only costs memory).
@@ -85,8 +108,19 @@ class PlaneSearch {
   // "its preferred point > the rest", given as {preferred, rejected...}.
   // Recomputes the model and proposes the next plane. Points are clamped into [0,1]^n;
   // throws std::invalid_argument on a wrong size or non-finite entries.
+  // `shown_representatives`, when given, replaces those points by what the user was shown for
+  // them (e.g. each projected onto holds), in the order of representative_coordinates().
+  // `set_directly`: the user set the point (sliders, typed targets), so the next plane is
+  // centred on it (not on the best observed point or the posterior-mean maximum) and the user
+  // sees the body they asked for as the current best.
   void submit(const Eigen::VectorXd& chosen,
-              const std::vector<std::vector<Eigen::VectorXd>>& extra_comparisons = {});
+              const std::vector<std::vector<Eigen::VectorXd>>& extra_comparisons = {},
+              const std::vector<Eigen::VectorXd>& shown_representatives = {},
+              bool set_directly = false);
+  // Where submit() takes the plane's representatives, in Plane::point coordinates (s, t):
+  // c, c+u, then for a plane c-u, c+v, c-v and (options().representatives >= 9) the edge
+  // midpoints.
+  std::vector<std::pair<double, double>> representative_coordinates() const;
 
   // Current best point (x+): the centre of the current plane.
   Eigen::VectorXd x_plus() const { return plane_.c; }
@@ -109,6 +143,10 @@ class PlaneSearch {
   // Sets options().perceptual_scale (empty: none) for the next submissions. Throws
   // std::invalid_argument on a wrong size or a non-positive or non-finite entry.
   void set_perceptual_scale(const Eigen::VectorXd& scale);
+  // Before the first submission and with a perceptual scale: replaces the current plane by
+  // visible_first_plane() and returns true (start_over() then starts from it too); otherwise
+  // false and nothing changes.
+  bool use_visible_first_plane();
 
   // Seconds spent inside the last submit() (absorbing the choice and proposing the plane).
   double last_submit_seconds() const { return last_submit_seconds_; }
@@ -127,7 +165,7 @@ class PlaneSearch {
     std::string rng_state;
   };
 
-  void propose_next_plane(const Eigen::VectorXd& last_choice);
+  void propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly);
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 
@@ -139,6 +177,8 @@ class PlaneSearch {
   std::vector<Snapshot> history_;  // one per submission, oldest first
   int start_overs_ = 0;
   double last_submit_seconds_ = 0.0;
+  // model.btl_scale as given, restored when the perceptual scale is removed.
+  double plain_btl_scale_ = 0.01;
 };
 
 }  // namespace sps

@@ -506,7 +506,14 @@ TEST_CASE("with a perceptual distance no zoomed grid shows look-alikes", "[app][
         CHECK(session.clicks_on_plane() < 4);
       }
       const auto sub = session.submission();
-      CHECK(sub.extra_comparisons.size() == static_cast<size_t>(session.clicks_on_plane()));
+      // At most one comparison per level; each holds only cells clearly different from the
+      // clicked one (policy.compare_mm).
+      CHECK(sub.extra_comparisons.size() <= static_cast<size_t>(session.clicks_on_plane()));
+      for (const auto& comparison : sub.extra_comparisons) {
+        REQUIRE(comparison.size() >= 2u);
+        const Eigen::MatrixXd d = distance(comparison);
+        for (Eigen::Index k = 1; k < d.cols(); ++k) CHECK(d(0, k) >= policy.compare_mm);
+      }
       sps::PlaneSearch next = session.search();
       next.submit(sub.chosen, sub.extra_comparisons);
       session.finish_plane(std::move(next));
@@ -515,6 +522,45 @@ TEST_CASE("with a perceptual distance no zoomed grid shows look-alikes", "[app][
     if (mm_per_unit < 100.0) CHECK(ended_early > 0);
     if (mm_per_unit > 300.0) CHECK(ended_early == 0);
   }
+}
+
+TEST_CASE("zoom-level clicks count only over clearly different cells", "[app][jnd]") {
+  const auto distance = euclidean_mm(1000.0);
+  std::vector<std::size_t> totals;
+  for (double compare_mm : {0.0, 60.0, 150.0, 1e9}) {
+    app::Session session(small_settings());
+    app::ZoomPolicy policy;
+    policy.compare_mm = compare_mm;
+    session.set_perceptual_distance(distance, policy);
+    while (!session.submission_pending()) session.click({2, 0});
+    const auto sub = session.submission();
+    // Expected: per level, the cells at least compare_mm from the clicked one.
+    std::size_t expected_levels = 0, expected_cells = 0;
+    for (int level = 0; level < session.clicks_on_plane(); ++level) {
+      const auto cells = session.cells_at(session.views()[static_cast<std::size_t>(level)]);
+      const Eigen::MatrixXd d = distance(xs_of(cells));
+      std::size_t far = 0;
+      for (Eigen::Index k = 0; k < d.cols(); ++k) far += k != 2 && d(2, k) >= compare_mm;
+      expected_levels += far > 0;
+      expected_cells += far;
+    }
+    std::size_t compared = 0;
+    for (const auto& comparison : sub.extra_comparisons) {
+      compared += comparison.size() - 1;
+      const Eigen::MatrixXd d = distance(comparison);
+      for (Eigen::Index k = 1; k < d.cols(); ++k) CHECK(d(0, k) >= compare_mm);
+    }
+    CHECK(sub.extra_comparisons.size() == expected_levels);
+    CHECK(compared == expected_cells);
+    if (compare_mm == 0.0)
+      CHECK(compared == 8u * static_cast<std::size_t>(session.clicks_on_plane()));
+    if (compare_mm == 1e9) CHECK(sub.extra_comparisons.empty());
+    totals.push_back(compared);
+  }
+  // A stricter threshold never keeps more cells, and the middle ones drop some but not all.
+  CHECK(totals[1] < totals[0]);
+  CHECK(totals[2] < totals[1]);
+  CHECK(totals[2] > 0u);
 }
 
 TEST_CASE("undo after a plane that ended early reopens it", "[app][jnd]") {
@@ -562,4 +608,135 @@ TEST_CASE("a plane that ended early is saved, loaded back and undone like any ot
   CHECK(loaded.planes_done() == session.planes_done());
   CHECK(loaded.undo_click());
   CHECK(loaded.clicks_on_plane() == static_cast<int>(session.history().back().path.size()) - 1);
+}
+
+namespace {
+
+// A hold on a linear quantity: the sum of the first two coordinates stays `value`. Its
+// tangent directions have d0 + d1 = 0; the
+// projection is the nearest point on the line, clamped into the box.
+class SumHold : public app::ConstraintProjector {
+ public:
+  explicit SumHold(double value) : value_(value) {}
+  class Plane : public app::HeldPlane {
+   public:
+    Plane(double value, const sps::Plane& original) : value_(value) {
+      plane = original;
+      plane.c = project(original.c);
+      const auto tangent = [](Eigen::VectorXd d) {
+        if (d.size() < 2) return d;
+        const double m = 0.5 * (d[0] + d[1]);
+        d[0] -= m, d[1] -= m;
+        return d;
+      };
+      plane.u = tangent(original.u);
+      plane.v = tangent(original.v);
+    }
+    Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+      Eigen::VectorXd y = x;
+      const double m = 0.5 * (value_ - x[0] - x[1]);
+      y[0] = std::clamp(x[0] + m, std::max(0.0, value_ - 1.0), std::min(1.0, value_));
+      y[1] = value_ - y[0];
+      return y;
+    }
+
+   private:
+    double value_;
+  };
+  std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
+    return std::make_shared<Plane>(value_, plane);
+  }
+  std::string description() const override { return "x1 + x2"; }
+  std::vector<app::HeldValue> held_values() const override { return {{"sum", value_}}; }
+
+ private:
+  double value_;
+};
+
+}  // namespace
+
+TEST_CASE("holds: every cell and every choice lies on the hold; release keeps the data",
+          "[app][holds]") {
+  app::Session session(small_settings());
+  finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
+  const int iteration = session.search().iteration();
+  session.set_constraint_projector(std::make_shared<SumHold>(0.9));
+  REQUIRE(session.constraint_projector() != nullptr);
+  const auto on_hold = [](const Eigen::VectorXd& x) { return std::abs(x[0] + x[1] - 0.9) < 1e-12; };
+  const auto cells = session.cells();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    CHECK(on_hold(cells[i].x));
+    CHECK(cells[i].x.minCoeff() >= 0.0);
+    CHECK(cells[i].x.maxCoeff() <= 1.0);
+    for (std::size_t j = 0; j < i; ++j) CHECK((cells[i].x - cells[j].x).norm() > 1e-3);
+  }
+  CHECK(on_hold(session.current_best()));
+  // The choice and every extra comparison the optimizer gets lie on the hold.
+  for (const sps::GridCell c : {sps::GridCell{2, 0}, sps::GridCell{0, 2}, sps::GridCell{1, 0}}) {
+    session.click(c);
+    CHECK(on_hold(session.current_best()));
+  }
+  session.click({1, 1});
+  REQUIRE(session.submission_pending());
+  const auto sub = session.submission();
+  CHECK(on_hold(sub.chosen));
+  for (const auto& comparison : sub.extra_comparisons) {
+    for (const auto& x : comparison) CHECK(on_hold(x));
+  }
+  // The plane's representatives the optimizer compares with are the held ones, as shown.
+  REQUIRE(sub.representatives.size() == session.search().representative_coordinates().size());
+  CHECK(sub.representatives.size() == 9);
+  const auto coarsest = session.cells_at(session.views().front());
+  for (std::size_t i = 0; i < sub.representatives.size(); ++i) {
+    CHECK(on_hold(sub.representatives[i]));
+    const auto [s, t] = session.search().representative_coordinates()[i];
+    bool shown = false;  // on the first grid (the whole plane) the cell at (s, t)
+    for (const auto& cell : coarsest) {
+      if (std::abs(cell.s - s) < 1e-9 && std::abs(cell.t - t) < 1e-9) {
+        shown = (cell.x - sub.representatives[i]).norm() < 1e-12;
+      }
+    }
+    CHECK(shown);
+  }
+  CHECK((sub.representatives[0] - session.search().current_plane().c).norm() > 1e-6);
+  sps::PlaneSearch next = session.search();
+  // A wrong count is refused before anything changes.
+  CHECK_THROWS_WITH(next.submit(sub.chosen, sub.extra_comparisons, {sub.chosen}),
+                    Catch::Contains("shown representatives"));
+  CHECK(next.iteration() == session.search().iteration());
+  next.submit(sub.chosen, sub.extra_comparisons, sub.representatives);
+  session.finish_plane(std::move(next));
+  CHECK(on_hold(session.current_best()));
+  // Released: the optimizer's own plane again, with every choice kept.
+  const int preferences = session.search().data().preference_count();
+  session.set_constraint_projector(nullptr);
+  CHECK(session.search().iteration() == iteration + 1);
+  CHECK(session.search().data().preference_count() == preferences);
+  CHECK((session.current_best() - session.search().x_plus()).norm() < 1e-12);
+}
+
+TEST_CASE("holds are saved with the session and read back; files without them still load",
+          "[app][holds][session-file]") {
+  app::Session session(small_settings());
+  finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
+  CHECK(session.to_json().find("\"holds\"") == std::string::npos);  // none: no field
+  session.set_constraint_projector(std::make_shared<SumHold>(0.9));
+  const std::string text = session.to_json();
+  app::Session back = app::Session::from_json(text);
+  REQUIRE(back.saved_holds().size() == 1);
+  CHECK(back.saved_holds()[0].name == "sum");
+  CHECK(std::abs(back.saved_holds()[0].value - 0.9) < 1e-12);
+  CHECK(back.constraint_projector() == nullptr);  // the window makes the projector
+  // Saved again before the window held them: still there.
+  CHECK(app::Session::from_json(back.to_json()).saved_holds().size() == 1);
+  // Held again: the same cells as before the save.
+  back.set_constraint_projector(std::make_shared<SumHold>(back.saved_holds()[0].value));
+  const auto before = session.cells();
+  const auto after = back.cells();
+  REQUIRE(before.size() == after.size());
+  for (std::size_t i = 0; i < before.size(); ++i) CHECK((before[i].x - after[i].x).norm() < 1e-9);
+  // Released: nothing saved.
+  back.set_constraint_projector(nullptr);
+  CHECK(back.saved_holds().empty());
+  CHECK(app::Session::from_json(back.to_json()).saved_holds().empty());
 }

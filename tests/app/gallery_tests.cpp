@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/gallery_app.hpp"
 #include "app/gallery_controller.hpp"
 #include "app/gallery_view.hpp"
 #include "app/session_store.hpp"
@@ -413,11 +414,18 @@ struct InProcessWindow {
   std::unique_ptr<app::GalleryView> view;
   double t = 0.0;
   long frames = 0;
+  float width = 1280, height = 720;
 
-  explicit InProcessWindow(app::ControllerOptions o) {
+  explicit InProcessWindow(app::ControllerOptions o, app::UiPrefs prefs = {},
+                           ImVec2 size = ImVec2(1280, 720)) {
     create_test_imgui_context();
+    width = size.x;
+    height = size.y;
+    ImGui::GetIO().DisplaySize = size;
     c = std::make_unique<GalleryController>(o, &spaces::open_space, t);
-    view = std::make_unique<app::GalleryView>(app::ViewOptions{}, app::UiPrefs{});
+    app::ViewOptions vo;
+    vo.file_dialog = "builtin";  // never a desktop dialog in a test
+    view = std::make_unique<app::GalleryView>(vo, std::move(prefs));
   }
   ~InProcessWindow() {
     view->release_gl();
@@ -428,7 +436,7 @@ struct InProcessWindow {
   void frame(ImVec2 mouse, bool down, double seconds = 1.0 / 60.0) {
     t += seconds;
     c->begin_frame(t);
-    view->update_cells(*c, 1280, 720, 1.0f);
+    view->update_cells(*c, width, height, 1.0f);
     view->draw_cells(*c);
     ImGuiIO& io = ImGui::GetIO();
     io.DeltaTime = 1.0f / 60.0f;
@@ -437,6 +445,16 @@ struct InProcessWindow {
     ImGui::NewFrame();
     view->build(*c, frames++);
     ImGui::Render();
+  }
+  // A real click (press, release) on a widget the view drew in the last frame.
+  void click(const std::string& widget) {
+    const auto r = view->widget(widget);
+    REQUIRE(r);
+    const ImVec2 p(r->x + r->w / 2, r->y + r->h / 2);
+    frame(p, false);
+    frame(p, true);
+    frame(p, false);
+    frame(ImVec2(-1, -1), false);  // the intent it queued is applied
   }
   ImVec2 cell_centre(int index) const {
     const auto& l = view->layout();
@@ -506,4 +524,403 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
   c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
   c.begin_frame(0.1);
   CHECK_FALSE(c.session().has_perceptual_distance());
+}
+
+namespace {
+
+double number(const app::DesignSpace& space, const Eigen::VectorXd& x, const std::string& name) {
+  for (const auto& [key, value] : space.numbers(*space.prepare(x, true))) {
+    if (key == name) return value;
+  }
+  return std::nan("");
+}
+
+// Height (m) of the body at x in a space, as the inspector measures it.
+double height_at(const app::DesignSpace& space, const Eigen::VectorXd& x) {
+  for (const auto& [name, value] : space.numbers(*space.prepare(x, true))) {
+    if (name == "height_m") return value;
+  }
+  return -1.0;
+}
+
+// Prefs that keep the New-search panel open and the other panels shut, so it fits the window.
+app::UiPrefs prefs_with_open_panel() {
+  app::UiPrefs p;
+  p.open_panel = true;
+  p.history_panel = false;
+  p.save_panel = false;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("holds through the controller: every cell held, choices learnt, release keeps data",
+          "[gallery][holds]") {
+  TempDir dir;
+  GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
+  double t = finish_plane(c, 0.0);
+  REQUIRE(c.session().planes_done() == 1);
+  const int preferences = c.session().search().data().preference_count();
+
+  c.queue(intent::SetHolds{{"height=1.80"}});
+  CHECK(c.holds().empty());  // nothing until the next frame
+  c.begin_frame(t += 1.0);
+  REQUIRE(c.holds().size() == 1);
+  CHECK_THAT(c.holds_description(), Catch::Contains("height 180.0 cm"));
+  for (const auto& cell : c.displayed_cells()) {
+    CHECK(std::abs(number(c.space(), cell.x, "height_m") - 1.80) <= 0.01);
+    CHECK(cell.x.minCoeff() >= 0.0);
+    CHECK(cell.x.maxCoeff() <= 1.0);
+  }
+  // A held plane: the choice the optimizer learns is a held body.
+  t = finish_plane(c, t);
+  REQUIRE(c.session().planes_done() == 2);
+  CHECK(std::abs(number(c.space(), c.session().history().back().chosen, "height_m") - 1.80) <=
+        0.01);
+  CHECK(c.session().search().data().preference_count() > preferences);
+  const int held_preferences = c.session().search().data().preference_count();
+
+  // Asked while the optimizer runs: applied once its result is in, never discarding it.
+  const int levels = c.session().settings().zoom_levels;
+  for (int i = 0; i < levels; ++i) {
+    c.queue(intent::ClickCell{i % 3, 2});
+    c.begin_frame(t += 0.1);
+    if (i + 1 < levels) c.begin_frame(t += 5.0);  // let the zoom finish
+  }
+  REQUIRE(c.busy());
+  c.queue(intent::SetHolds{{"height=1.80", "mass=85"}});
+  c.begin_frame(t += 0.1);
+  c.wait_for_optimizer(t += 0.1);
+  c.begin_frame(t += 0.1);
+  CHECK(c.session().planes_done() == 3);
+  REQUIRE(c.holds().size() == 2);
+  for (const auto& cell : c.session().cells()) {
+    CHECK(std::abs(number(c.space(), cell.x, "height_m") - 1.80) <= 0.01);
+    CHECK(std::abs(number(c.space(), cell.x, "mass_kg") - 85.0) <= 1.5);
+  }
+
+  // Releasing the holds keeps every choice.
+  const int before_release = c.session().search().data().preference_count();
+  CHECK(before_release > held_preferences);
+  c.queue(intent::SetHolds{{}});
+  c.begin_frame(t += 1.0);
+  CHECK(c.holds().empty());
+  CHECK(c.session().constraint_projector() == nullptr);
+  CHECK(c.session().planes_done() == 3);
+  CHECK(c.session().search().data().preference_count() == before_release);
+  CHECK_THAT(c.message().text, Catch::Contains("all your choices are kept"));
+
+  // Bad holds: a message, nothing changed.
+  c.queue(intent::SetHolds{{"weight=80"}});
+  c.begin_frame(t += 1.0);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK(c.holds().empty());
+
+  // "Go": the nearest body with the typed mass becomes the current best.
+  c.queue(intent::GoToTargets{{"mass=80"}});
+  c.begin_frame(t += 1.0);
+  c.wait_for_optimizer(t += 0.1);
+  CHECK(c.session().planes_done() == 4);
+  CHECK(std::abs(number(c.space(), c.session().current_best(), "mass_kg") - 80.0) <= 0.75);
+  // Out of reach: the message names the nearest reachable value; nothing submitted.
+  c.queue(intent::GoToTargets{{"height=2.6"}});
+  c.begin_frame(t += 1.0);
+  CHECK_FALSE(c.busy());
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK_THAT(c.message().text, Catch::Contains("nearest reachable"));
+
+  // A photo has nothing to hold.
+  c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
+  c.begin_frame(t += 1.0);
+  c.queue(intent::SetHolds{{"height"}});
+  c.begin_frame(t += 1.0);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK_THAT(c.message().text, Catch::Contains("no measurements to hold"));
+}
+
+TEST_CASE("holds survive a restart: saved with the session, held again on resume",
+          "[gallery][holds]") {
+  TempDir dir;
+  const fs::path file = dir.path / "s.json";
+  std::vector<Eigen::VectorXd> held_cells;
+  {
+    GalleryController c(options(file, "body"), &spaces::open_space, 0.0);
+    double t = finish_plane(c, 0.0);
+    c.queue(intent::SetHolds{{"height=1.75", "mass"}});
+    c.begin_frame(t += 1.0);
+    REQUIRE(c.holds().size() == 2);
+    for (const auto& cell : c.session().cells()) held_cells.push_back(cell.x);
+    c.save_now();
+  }
+  auto resumed_options = options(file, "body");
+  resumed_options.resume = app::ResumePolicy::kYes;
+  GalleryController c(resumed_options, &spaces::open_space, 0.0);
+  c.begin_frame(1.0);
+  REQUIRE(c.holds().size() == 2);
+  CHECK_THAT(c.holds_description(), Catch::Contains("height 175.0 cm"));
+  CHECK_THAT(c.holds_description(), Catch::Contains("mass"));
+  const auto cells = c.session().cells();
+  REQUIRE(cells.size() == held_cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    CHECK(std::abs(number(c.space(), cells[i].x, "height_m") - 1.75) <= 0.01);
+    CHECK((cells[i].x - held_cells[i]).norm() < 1e-6);
+  }
+  // A name the space does not know: a message, the session still opens.
+  {
+    std::ifstream in(file);
+    nlohmann::json j = nlohmann::json::parse(in);
+    j["holds"][0]["name"] = "weight";
+    std::ofstream(file) << j.dump();
+  }
+  GalleryController d(resumed_options, &spaces::open_space, 0.0);
+  d.begin_frame(1.0);
+  CHECK(d.holds().empty());
+  CHECK(d.message().kind == app::MessageKind::kError);
+  CHECK_THAT(d.message().text, Catch::Contains("weight"));
+}
+
+TEST_CASE("the New-search panel starts a search on the chosen body model and remembers it",
+          "[gallery][gl][model-picker]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  app::UiPrefs remembered;
+  {
+    InProcessWindow w(options(session, "body"), prefs_with_open_panel(), ImVec2(1280, 900));
+    for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+    // First launch: neutral preselected, and the search is on the neutral model.
+    CHECK(w.view->model_choice() == "neutral");
+    CHECK(w.c->space().source_label() == "neutral (built-in)");
+    REQUIRE(w.view->widget("model:female"));
+    REQUIRE(w.view->widget("toolbar:model"));
+    const int generation = w.c->space_generation();
+
+    w.click("model:female");
+    CHECK(w.view->model_choice() == "female");
+    CHECK(w.c->space_generation() == generation);  // choosing alone starts nothing
+    w.click("new-search");
+    w.frame(ImVec2(-1, -1), false);
+    CHECK(w.c->space_generation() != generation);
+    CHECK(w.c->message().kind == app::MessageKind::kSuccess);
+    CHECK(w.c->space().settings().source == "female");
+    CHECK(w.c->space().source_label() == "female (built-in)");
+    CHECK(w.c->session().settings().model_path == "female");
+    CHECK(w.c->session().settings().components == 10);
+    // It is the female model: its mean body is the female model's, not the neutral one's.
+    const Eigen::VectorXd mean = Eigen::VectorXd::Constant(10, 0.5);
+    const auto female = spaces::open_space({"body", "female", 10});
+    const auto neutral = spaces::open_space({"body", "neutral", 10});
+    const double h = height_at(w.c->space(), mean);
+    CHECK(std::abs(h - height_at(*female, mean)) < 1e-9);
+    CHECK(std::abs(h - height_at(*neutral, mean)) > 0.01);
+    // The autosaved session records it.
+    const auto saved = app::load_session(session);
+    REQUIRE(saved.session);
+    CHECK(saved.session->settings().model_path == "female");
+    // The choice is in the prefs, and survives the file.
+    CHECK(w.view->prefs().body_model == "female");
+    REQUIRE(app::save_ui_prefs(w.view->prefs(), app::ui_prefs_path(session)));
+    remembered = app::load_ui_prefs(app::ui_prefs_path(session));
+  }
+  CHECK(remembered.body_model == "female");
+
+  // The next launch (a fresh session file, so no resume question) starts on the female model
+  // with Female preselected...
+  app::GalleryOptions launch;
+  launch.session_path = dir.path / "next.json";
+  launch.resume = app::ResumePolicy::kNo;
+  {
+    app::ControllerOptions o = app::controller_options(launch, remembered);
+    o.log = false;
+    InProcessWindow w(o, remembered, ImVec2(1280, 900));
+    w.frame(ImVec2(-1, -1), false);
+    CHECK(w.c->space().settings().source == "female");
+    CHECK(w.view->model_choice() == "female");
+  }
+  // ...unless --model says otherwise for that launch, which is not remembered.
+  launch.source = "male";
+  {
+    app::ControllerOptions o = app::controller_options(launch, remembered);
+    o.log = false;
+    InProcessWindow w(o, remembered, ImVec2(1280, 900));
+    w.frame(ImVec2(-1, -1), false);
+    CHECK(w.c->space().settings().source == "male");
+    CHECK(w.view->model_choice() == "male");  // the panel shows the search's model
+    CHECK(w.view->prefs().body_model == "female");
+  }
+}
+
+TEST_CASE("a broken model file is refused by name and the current search goes on untouched",
+          "[gallery][gl][model-picker]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  const fs::path broken = dir.path / "broken.npz";
+  std::ofstream(broken) << "this is not a zip archive";
+  InProcessWindow w(options(session, "body"), prefs_with_open_panel(), ImVec2(1280, 900));
+  w.frame(ImVec2(-1, -1), false);
+  w.click("model:male");
+  w.c->queue(intent::ClickCell{1, 1});  // progress: a new search asks first
+  w.frame(ImVec2(-1, -1), false, 5.0);
+  REQUIRE(w.c->session().clicks_on_plane() == 1);
+  const Eigen::VectorXd best = w.c->session().current_best();
+  const int generation = w.c->space_generation();
+
+  w.view->set_model_file(broken.string());
+  w.frame(ImVec2(-1, -1), false);
+  CHECK(w.view->model_choice() == "file");
+  w.click("new-search");
+  REQUIRE(w.view->widget("confirm:start"));  // asked before discarding
+  CHECK(w.c->space().settings().source.empty());
+  w.click("confirm:start");
+  w.frame(ImVec2(-1, -1), false);
+  // Refused, naming the file and the problem.
+  CHECK(w.c->message().kind == app::MessageKind::kError);
+  INFO(w.c->message().text);
+  CHECK(w.c->message().text.find(broken.string()) != std::string::npos);
+  CHECK(w.c->message().text.find("zip") != std::string::npos);
+  // The search, its space and its file are as they were; nothing was set aside.
+  CHECK(w.c->space_generation() == generation);
+  CHECK(w.c->space().settings().source.empty());
+  CHECK(w.c->session().clicks_on_plane() == 1);
+  CHECK((w.c->session().current_best() - best).norm() < 1e-12);
+  CHECK_FALSE(fs::exists(session.string() + ".previous"));
+  const auto saved = app::load_session(session);
+  REQUIRE(saved.session);
+  CHECK(saved.session->clicks_on_plane() == 1);
+  // A file that failed is not remembered.
+  CHECK(w.view->prefs().body_model == "neutral");
+
+  // An SMPL .pkl gets told how to convert it.
+  const fs::path pkl = dir.path / "basicmodel_f.pkl";
+  std::ofstream(pkl) << "\x80\x02}q\x00.";
+  w.c->queue(intent::Open{{"body", pkl.string(), 10}, 0, 4});
+  w.frame(ImVec2(-1, -1), false);
+  CHECK(w.c->message().kind == app::MessageKind::kError);
+  CHECK(w.c->message().text.find("basicmodel_f.pkl") != std::string::npos);
+  CHECK(w.c->message().text.find("smpl_pkl_to_npz") != std::string::npos);
+  CHECK(w.c->session().clicks_on_plane() == 1);
+}
+
+TEST_CASE("a session on another model than the remembered one resumes on its own model",
+          "[gallery][model-picker]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  {
+    auto o = options(session, "body");
+    o.space.source = "female";
+    GalleryController first(o, &spaces::open_space, 0.0);
+    first.queue(intent::ClickCell{2, 0});
+    first.begin_frame(0.0);
+    first.save_now();
+  }
+  app::UiPrefs prefs;
+  prefs.body_model = "male";
+  app::GalleryOptions launch;
+  launch.session_path = session;
+  launch.resume = app::ResumePolicy::kYes;
+  {
+    app::ControllerOptions o = app::controller_options(launch, prefs);
+    o.log = false;
+    GalleryController c(o, &spaces::open_space, 0.0);
+    CHECK(c.space().settings().source == "female");
+    CHECK(c.session().clicks_on_plane() == 1);
+    CHECK(c.session().path()[0].col == 2);
+  }
+  // Asked: the question names the session's model; "Start new" starts on the remembered one.
+  launch.resume = app::ResumePolicy::kAsk;
+  app::ControllerOptions o = app::controller_options(launch, prefs);
+  o.log = false;
+  GalleryController c(o, &spaces::open_space, 0.0);
+  REQUIRE(c.resume_candidate() != nullptr);
+  CHECK(c.resume_description().find("female") != std::string::npos);
+  c.queue(intent::StartNew{});
+  c.begin_frame(0.1);
+  CHECK(c.space().settings().source == "male");
+  CHECK(c.session().settings().model_path == "male");
+  CHECK(c.session().clicks_on_plane() == 0);
+  CHECK(fs::exists(session.string() + ".previous"));  // the female session is kept
+}
+
+TEST_CASE("ui prefs are written when they change, once they settle, atomically",
+          "[gallery][ui-prefs]") {
+  TempDir dir;
+  const fs::path path = app::ui_prefs_path(dir.path / "session.json");
+  app::UiPrefsSaver saver(path, app::load_ui_prefs(path), 1.0);
+  app::UiPrefs p = app::load_ui_prefs(path);
+  CHECK_FALSE(saver.update(p, 0.0));  // unchanged: nothing to write
+  CHECK_FALSE(fs::exists(path));
+  p.body_model = "female";
+  CHECK_FALSE(saver.update(p, 0.1));  // changed: wait for it to settle
+  CHECK_FALSE(saver.update(p, 0.6));
+  // A window being resized changes the prefs every frame: each change restarts the wait.
+  p.window_width = 1300;
+  p.window_height = 800;
+  CHECK_FALSE(saver.update(p, 0.9));
+  p.window_width = 1320;
+  CHECK_FALSE(saver.update(p, 1.0));
+  CHECK_FALSE(saver.update(p, 1.9));
+  CHECK_FALSE(fs::exists(path));
+  CHECK(saver.update(p, 2.05));  // settled for a second: written
+  CHECK(saver.writes() == 1);
+  const app::UiPrefs read = app::load_ui_prefs(path);
+  CHECK(read.body_model == "female");
+  CHECK(read.window_width == 1320);
+  CHECK(read == p);
+  // Nothing but the file itself in the folder (the atomic write's temporary is gone).
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir.path)) {
+    INFO(e.path());
+    CHECK(e.path() == path);
+    ++files;
+  }
+  CHECK(files == 1);
+  CHECK_FALSE(saver.update(p, 5.0));  // written once, not every frame
+  CHECK(saver.writes() == 1);
+  // A change undone before it settles writes nothing.
+  app::UiPrefs q = p;
+  q.view_preset = 1;
+  CHECK_FALSE(saver.update(q, 6.0));
+  CHECK_FALSE(saver.update(p, 6.5));
+  CHECK_FALSE(saver.update(p, 9.0));
+  CHECK(saver.writes() == 1);
+  // At exit, a change that has not settled yet is written at once.
+  q.history_panel = false;
+  CHECK_FALSE(saver.update(q, 10.0));
+  CHECK(saver.flush(q));
+  CHECK(saver.writes() == 2);
+  CHECK(app::load_ui_prefs(path) == q);
+
+  // A folder that cannot hold the file: no crash, tried again later, flush says it failed.
+  std::ofstream(dir.path / "a-file") << "x";
+  app::UiPrefsSaver stuck(dir.path / "a-file" / "ui.json", app::UiPrefs{}, 1.0);
+  CHECK_FALSE(stuck.update(q, 0.0));
+  CHECK_FALSE(stuck.update(q, 1.5));
+  CHECK_FALSE(stuck.update(q, 3.0));
+  CHECK(stuck.writes() == 0);
+  CHECK_FALSE(stuck.flush(q));
+}
+
+TEST_CASE("asking for more components than the body model has says so", "[gallery]") {
+  TempDir dir;
+  auto o = options(dir.path / "s.json", "body");
+  o.space.source = "female";
+  o.space.dimensions = 40;
+  GalleryController c(o, &spaces::open_space, 0.0);
+  const int has = c.space().dimensions();
+  REQUIRE(has < 40);  // the built-in models keep 16
+  CHECK(c.session().settings().components == has);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  INFO(c.message().text);
+  CHECK(c.message().text.find("only " + std::to_string(has) + " components") != std::string::npos);
+  CHECK(c.message().text.find("40") != std::string::npos);
+  // A new search asking for too many says so too; one within the model's count does not.
+  c.queue(intent::Open{{"body", "male", 50}, 0, 4});
+  c.begin_frame(0.1);
+  CHECK(c.space().settings().source == "male");
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK(c.message().text.find("new search started") != std::string::npos);
+  CHECK(c.message().text.find("50") != std::string::npos);
+  c.queue(intent::Open{{"body", "male", 8}, 0, 4});
+  c.begin_frame(0.2);
+  CHECK(c.message().kind == app::MessageKind::kSuccess);
+  CHECK(c.space().dimensions() == 8);
 }

@@ -40,7 +40,8 @@ launch() {
     --window 1400x900 --zoom-seconds 0.4 --report-layout "$@" >>"$T/log" 2>&1 &
   APP_PID=$!
   wait_for 30 grep -qs '^\[layout\] cell 9 ' "$T/log" || fail "no window / grid within 30 s"
-  WIN=$(xdotool search --sync --name '^Sequential Gallery$' | head -1)
+  WIN=$(xdotool search --sync --name '^Sequential Gallery$')
+  WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
   [[ -n "$WIN" ]] || fail "window not found"
   sleep 1  # let GLFW/ImGui take focus
 }

@@ -20,6 +20,9 @@ echo "$out"
 expect "$out" "shapedirs +float32 +\(1314, 3, 10\) +deflate"
 expect "$out" "usable  yes: 1314 vertices, 2624 faces, 24 joints \(root 'pelvis'\), 10 shape components"
 
+out=$("$exe" inspect --model female)  # a built-in name reads the embedded model
+expect "$out" "usable  yes: [0-9]+ vertices"
+
 echo "== measure (radius x 1.25 -> girth 64 * 0.1875 * sin(pi/32) = 1.1762 m)"
 out=$("$exe" measure --model "$dir/cyl.npz" --betas 0.25 0)
 echo "$out"
@@ -125,4 +128,24 @@ refuse "/dev/zero: not a regular file" "$exe" measure --model /dev/zero
 refuse "--vrm-name: the text is not valid UTF-8" \
   "$exe" export --model "$dir/cyl.npz" --vrm-name $'caf\xe9' -o "$dir/latin1.vrm"
 out=$("$exe" measure --model "$dir/cyl.npz" --betas 1e-320) || fail "--betas 1e-320 refused: $out"
+
+echo "== measurement targets (issue 13): the cylinder's height is 1.7 (1 + beta2)"
+out=$("$exe" measure --model "$dir/cyl.npz" --target height=2.04 2>&1) || fail "target refused: $out"
+echo "$out"
+expect "$out" "height  2.04[0-9]* m"
+expect "$out" "target: reached height 204.0 cm"
+out=$("$exe" measure --model "$dir/cyl.npz" --target height=170cm --target mass=150kg 2>&1) ||
+  fail "two targets refused: $out"
+expect "$out" "mass    1[45][0-9]\.[0-9] kg"
+"$exe" export --model "$dir/cyl.npz" --target height=1.9 -o "$dir/target.glb" >/dev/null 2>&1 ||
+  fail "export --target failed"
+[ -s "$dir/target.glb" ] || fail "export --target wrote nothing"
+refuse "height '9' is out of range" "$exe" measure --model "$dir/cyl.npz" --target height=9
+# The built-in model stays human inside +-3 SD: 2.6 m is out of its reach.
+refuse "out of reach .*height 260\.0 cm.* nearest reachable: height" \
+  "$exe" measure --target height=2.6
+refuse "height 'nan' is not a number" "$exe" measure --model "$dir/cyl.npz" --target height=nan
+refuse "unknown measurement 'weight'.*known: height, mass" \
+  "$exe" measure --model "$dir/cyl.npz" --target weight=80
+refuse "mass '-3' is out of range" "$exe" export --model "$dir/cyl.npz" --target mass=-3 -o "$dir/m.glb"
 echo "body_cli: all checks passed"

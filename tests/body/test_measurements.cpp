@@ -6,6 +6,7 @@
 
 #include "body/convex_hull.hpp"
 #include "body/measurements.hpp"
+#include "body/mesh_slice.hpp"
 #include "body/model_loader.hpp"
 #include "npz_fixtures.hpp"
 
@@ -161,4 +162,206 @@ TEST_CASE("measure: the chest search stops where arms join the torso", "[measure
   const auto res = body::measure(body::load_model(path, 2), Eigen::VectorXf());
   CHECK(res.chest_height == Approx(0.70).margin(0.006));
   CHECK(res.chest == Approx(polygon_girth(0.16, 64)).epsilon(2e-3));
+}
+
+namespace {
+
+// Appends a closed axis-aligned box [lo, hi] to a mesh, faces counter-clockwise seen from
+// outside (or clockwise with `flip`).
+void add_box(body::Vertices& v, body::Faces& f, const Eigen::Vector3f& lo,
+             const Eigen::Vector3f& hi, bool flip = false) {
+  const auto base = static_cast<std::uint32_t>(v.rows());
+  v.conservativeResize(v.rows() + 8, 3);
+  for (int i = 0; i < 8; ++i) {
+    v.row(base + i) << ((i & 1) ? hi.x() : lo.x()), ((i & 2) ? hi.y() : lo.y()),
+        ((i & 4) ? hi.z() : lo.z());
+  }
+  // Quads (outward normal): -x, +x, -y, +y, -z, +z.
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& q : quads) {
+    const std::uint32_t t[2][3] = {{base + q[0], base + q[1], base + q[2]},
+                                   {base + q[0], base + q[2], base + q[3]}};
+    for (const auto& tri : t) {
+      f.conservativeResize(f.rows() + 1, 3);
+      f.row(f.rows() - 1) << tri[0], (flip ? tri[2] : tri[1]), (flip ? tri[1] : tri[2]);
+    }
+  }
+}
+
+// A box figure: a torso 0.40 x 0.80 x 0.20 m on two legs 0.16 x 0.80 x 0.20 m (a 4 cm gap
+// between them), with SMPL-named joints placed by hand.
+struct BoxFigure {
+  body::Model model;
+  body::BodyMesh mesh;
+};
+
+BoxFigure box_figure(bool flip) {
+  BoxFigure b;
+  body::Vertices& v = b.mesh.vertices;
+  body::Faces& f = b.model.faces;
+  add_box(v, f, {-0.2f, 0.8f, -0.1f}, {0.2f, 1.6f, 0.1f}, flip);
+  add_box(v, f, {-0.18f, 0.0f, -0.1f}, {-0.02f, 0.8f, 0.1f}, flip);
+  add_box(v, f, {0.02f, 0.0f, -0.1f}, {0.18f, 0.8f, 0.1f}, flip);
+  b.model.joint_names = body::smpl_joint_names();
+  b.mesh.joints = body::Vertices::Zero(24, 3);
+  const auto set = [&](const char* name, float x, float y, float z) {
+    for (std::size_t j = 0; j < b.model.joint_names.size(); ++j) {
+      if (b.model.joint_names[j] == name)
+        b.mesh.joints.row(static_cast<Eigen::Index>(j)) << x, y, z;
+    }
+  };
+  set("left_hip", 0.1f, 0.85f, 0.0f);
+  set("right_hip", -0.1f, 0.85f, 0.0f);
+  set("left_shoulder", 0.17f, 1.5f, 0.02f);
+  set("right_shoulder", -0.17f, 1.5f, -0.02f);
+  set("left_elbow", 0.30f, 1.25f, 0.0f);
+  set("right_elbow", -0.30f, 1.25f, 0.0f);
+  set("left_wrist", 0.34f, 1.0f, 0.03f);
+  set("right_wrist", -0.34f, 1.0f, 0.03f);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("measure: mass, BMI, shoulder width, inseam and arm length of a box figure",
+          "[measurements]") {
+  for (const bool flip : {false, true}) {
+    CAPTURE(flip);
+    const auto b = box_figure(flip);
+    const auto m = body::measure(b.model, b.mesh);
+    const double volume = 0.4 * 0.8 * 0.2 + 2 * 0.16 * 0.8 * 0.2;
+    CHECK(m.height == Approx(1.6).epsilon(1e-6));
+    CHECK(m.volume == Approx(volume).epsilon(1e-5));
+    CHECK(m.mass == Approx(volume * body::kBodyDensity).epsilon(1e-5));
+    CHECK(m.bmi == Approx(volume * body::kBodyDensity / (1.6 * 1.6)).epsilon(1e-5));
+    // Horizontal distance of the shoulder joints: (0.34, 0.04) in (x, z).
+    CHECK(m.shoulder_width == Approx(std::hypot(0.34, 0.04)).epsilon(1e-5));
+    // The crotch is the torso's underside between the legs.
+    CHECK(m.inseam == Approx(0.8).margin(1e-5));
+    const double left = std::sqrt(0.13 * 0.13 + 0.25 * 0.25 + 0.02 * 0.02) +
+                        std::sqrt(0.04 * 0.04 + 0.25 * 0.25 + 0.03 * 0.03);
+    const double right = std::sqrt(0.13 * 0.13 + 0.25 * 0.25 + 0.02 * 0.02) +
+                         std::sqrt(0.04 * 0.04 + 0.25 * 0.25 + 0.03 * 0.03);
+    CHECK(m.arm_length == Approx(0.5 * (left + right)).epsilon(1e-5));
+    // The same without the girths.
+    const auto quick = body::measure(b.model, b.mesh, false);
+    CHECK(quick.inseam == Approx(m.inseam).margin(1e-9));
+    CHECK(quick.mass == Approx(m.mass).epsilon(1e-9));
+    CHECK(quick.chest == 0.0);
+  }
+}
+
+TEST_CASE("measure: lengths that need joints or legs are n/a without them", "[measurements]") {
+  fixtures::Cylinder c;
+  c.height = 1.75;
+  c.base_y = 0.0;
+  const auto m = load_cylinder(c, "cyl-noleg");
+  const auto res = body::measure(m, Eigen::VectorXf());
+  CHECK(std::isnan(res.inseam));  // no crotch: the ray meets only the sole
+  auto b = box_figure(false);
+  b.model.joint_names.assign(24, "joint");
+  const auto nameless = body::measure(b.model, b.mesh);
+  CHECK(std::isnan(nameless.shoulder_width));
+  CHECK(std::isnan(nameless.arm_length));
+  // Without hip joints the line through the mean vertex (x = 0) still finds the crotch.
+  CHECK(nameless.inseam == Approx(0.8).margin(1e-5));
+}
+
+TEST_CASE("measurement names, formatting and typed values", "[measurements]") {
+  REQUIRE(body::find_measurement("height") != nullptr);
+  REQUIRE(body::find_measurement("shoulder_width") != nullptr);
+  CHECK(body::find_measurement("weight") == nullptr);
+  CHECK(body::measurement_kinds().size() == 9);
+  using body::Quantity;
+  using body::Units;
+  CHECK(body::format_measurement(Quantity::kLength, 1.8, Units::kMetric) == "180.0 cm");
+  CHECK(body::format_measurement(Quantity::kLength, 1.8, Units::kImperial) == "5 ft 10.9 in");
+  CHECK(body::format_measurement(Quantity::kLength, 0.9144, Units::kImperial) == "36.0 in");
+  CHECK(body::format_measurement(Quantity::kMass, 90.0, Units::kImperial) == "198.4 lb");
+  CHECK(body::format_measurement(Quantity::kMass, std::nan(""), Units::kMetric) == "n/a");
+  CHECK(body::format_difference(Quantity::kLength, -0.0254, Units::kImperial) == "-1.00 in");
+  const auto& height = *body::find_measurement("height");
+  const auto& mass = *body::find_measurement("mass");
+  CHECK(body::parse_measurement_value(height, "1.80") == Approx(1.80));
+  CHECK(body::parse_measurement_value(height, "180cm") == Approx(1.80));
+  CHECK(body::parse_measurement_value(height, "71 in") == Approx(1.8034));
+  CHECK(body::parse_measurement_value(mass, "198lb") == Approx(89.8113).epsilon(1e-5));
+  for (const char* bad : {"nan", "inf", "", "abc", "1.8kg", "-1.7", "0", "1e9", "1.8.2"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_AS(body::parse_measurement_value(height, bad), std::invalid_argument);
+  }
+  CHECK_THROWS_WITH(body::parse_measurement_value(mass, "9000"),
+                    Catch::Contains("mass") && Catch::Contains("out of range"));
+}
+
+TEST_CASE("slices at many heights in one pass equal the slices one at a time",
+          "[measurements][slice]") {
+  const body::Model model = body::load_builtin_model("neutral", 10);
+  Eigen::VectorXf betas(10);
+  betas << 1.5f, -2.0f, 0.5f, 2.5f, -1.0f, 0.0f, 3.0f, -3.0f, 0.7f, -0.2f;
+  const body::BodyMesh mesh = body::evaluate(model, betas);
+  const double ymin = mesh.vertices.col(1).minCoeff(), ymax = mesh.vertices.col(1).maxCoeff();
+  std::vector<double> heights;
+  // Descending, a repeat, a vertex's own height (the at-or-above rule), outside the body.
+  for (int i = 160; i >= 20; i -= 7) heights.push_back(ymin + (ymax - ymin) * i / 200.0);
+  heights.push_back(heights[3]);
+  heights.push_back(mesh.vertices(0, 1));
+  heights.push_back(ymax + 1.0);
+  const auto all = body::slice_mesh(mesh.vertices, model.faces, heights);
+  REQUIRE(all.size() == heights.size());
+  int pieces = 0;
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    INFO("height " << heights[i]);
+    const auto one = body::slice_mesh(mesh.vertices, model.faces, heights[i]);
+    REQUIRE(all[i].size() == one.size());
+    for (std::size_t p = 0; p < one.size(); ++p) {
+      REQUIRE(all[i][p].points.size() == one[p].points.size());
+      for (std::size_t q = 0; q < one[p].points.size(); ++q) {
+        CHECK((all[i][p].points[q] - one[p].points[q]).norm() < 1e-12);
+      }
+    }
+    pieces += static_cast<int>(one.size());
+  }
+  CHECK(pieces > 20);         // the body was cut (torso, arms, legs)
+  CHECK(all.back().empty());  // above the head
+}
+
+TEST_CASE("measure: one girth band alone reads the same as all bands", "[measurements][slice]") {
+  const body::Model model = body::load_builtin_model("female", 10);
+  Eigen::VectorXf betas(10);
+  betas << -1.0f, 2.0f, 0.5f, -2.5f, 1.0f, 0.3f, -0.7f, 2.2f, 0.0f, 1.1f;
+  const body::BodyMesh mesh = body::evaluate(model, betas);
+  const auto all = body::measure(model, mesh);
+  REQUIRE(all.chest > 0.5);
+  REQUIRE(all.waist > 0.4);
+  REQUIRE(all.hips > 0.5);
+  const auto chest = body::measure(model, mesh, true, body::kChestBand);
+  CHECK(chest.chest == Approx(all.chest).epsilon(1e-12));
+  CHECK(chest.waist == 0.0);
+  CHECK(chest.hips == 0.0);
+  const auto waist = body::measure(model, mesh, true, body::kWaistBand);
+  CHECK(waist.waist == Approx(all.waist).epsilon(1e-12));
+  CHECK(waist.chest == 0.0);
+  const auto hips = body::measure(model, mesh, true, body::kHipsBand);
+  CHECK(hips.hips == Approx(all.hips).epsilon(1e-12));
+  CHECK(hips.height == Approx(all.height).epsilon(1e-12));
+}
+
+TEST_CASE("each measurement's typed example parses, in both units, near an average body",
+          "[measurements]") {
+  const body::Model model = body::load_builtin_model("neutral", 10);
+  const auto mean = body::measure(model, Eigen::VectorXf::Zero(10));
+  for (const auto& k : body::measurement_kinds()) {
+    INFO(k.name);
+    const std::string metric = k.example_metric, imperial = k.example_imperial;
+    REQUIRE(metric.rfind("e.g. ", 0) == 0);
+    REQUIRE(imperial.rfind("e.g. ", 0) == 0);
+    const double m = body::parse_measurement_value(k, metric.substr(5));
+    const double i = body::parse_measurement_value(k, imperial.substr(5));
+    CHECK(std::abs(m - i) <= 0.05 * m);
+    const double at_mean = mean.*k.field;
+    CHECK(m >= 0.7 * at_mean);
+    CHECK(m <= 1.4 * at_mean);
+  }
 }

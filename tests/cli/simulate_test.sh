@@ -6,7 +6,10 @@ dir=$2
 rm -rf "$dir" && mkdir -p "$dir"
 fail() { echo "FAIL: $*"; exit 1; }
 
-"$bin" simulate --help | grep -q -- "--function" || fail "help does not list --function"
+# Output is captured before it is searched: with pipefail, `cmd | grep -q` fails whenever grep
+# exits early and the writer dies of SIGPIPE, which depends on the machine's timing.
+help=$("$bin" simulate --help)
+grep -q -- "--function" <<<"$help" || fail "help does not list --function"
 
 out=$("$bin" simulate --function gaussian --dims 4 --trials 2 --iterations 6 --resolution 100 \
       --quiet --csv "$dir/t.csv" --per-trial-csv "$dir/p.csv")
@@ -14,7 +17,7 @@ echo "$out"
 [ "$(echo "$out" | grep -cE '^ +[0-9]+ ')" = 6 ] || fail "expected 6 iteration rows"
 [ "$(wc -l < "$dir/t.csv")" = 7 ] || fail "CSV should have a header and 6 rows"
 [ "$(wc -l < "$dir/p.csv")" = 13 ] || fail "per-trial CSV should have a header and 12 rows"
-head -1 "$dir/t.csv" | grep -q "^iteration,mean_gap,sd_gap,median_gap" || fail "CSV header"
+grep -q "^iteration,mean_gap,sd_gap,median_gap" <<<"$(head -1 "$dir/t.csv")" || fail "CSV header"
 # Every row has as many fields as the header, and the per-trial seconds average to the mean.
 awk -F, 'NR==1 { n=NF } NF != n { exit 1 }' "$dir/t.csv" || fail "CSV rows do not match the header"
 awk -F, 'NR==FNR { if (FNR>1 && $3==6) { s+=$5; c++ } next }
@@ -37,8 +40,8 @@ out=$("$bin" simulate --function body --components 4 --trials 2 --iterations 3 -
       --csv "$dir/b.csv" --per-trial-csv "$dir/bp.csv")
 echo "$out"
 [ "$(echo "$out" | grep -cE '^ +[0-9]+ ')" = 3 ] || fail "body: expected 3 iteration rows"
-head -1 "$dir/b.csv" | grep -q "^iteration,mean_gap,sd_gap,median_gap,.*,duplicate_grids,pinned_fraction$" \
-  || fail "body CSV header"
+grep -q "^iteration,mean_gap,sd_gap,median_gap,.*,duplicate_grids,pinned_fraction$" \
+  <<<"$(head -1 "$dir/b.csv")" || fail "body CSV header"
 awk -F, 'NR==1 { n=NF } NF != n { exit 1 }' "$dir/b.csv" || fail "body CSV rows do not match the header"
 [ "$(wc -l < "$dir/bp.csv")" = 7 ] || fail "body per-trial CSV should have a header and 6 rows"
 # Gaps are distances in mm: positive, never growing; fractions lie in [0, 1].
@@ -46,15 +49,32 @@ awk -F, 'NR>1 { if ($2 <= 0 || (NR>2 && $2 > prev + 1e-9) || $7 < 0 || $7 > 1 ||
          END { exit bad }' "$dir/b.csv" || fail "body gaps or fractions out of range"
 "$bin" simulate --function body --components 3 --target-betas 1 -0.5 --method sls --trials 1 \
   --iterations 2 --quiet > /dev/null || fail "body with fixed target and sls"
-"$bin" simulate --function body --components 3 --model female --trials 1 --iterations 1 --quiet \
-  2>&1 >/dev/null | grep -qi "default" || fail "no note when falling back to the default model"
+# The built-in female and male models are searched, not the neutral one in their place: the
+# same target betas lie at different distances from the same first plane.
+for m in neutral female male; do
+  "$bin" simulate --function body --components 3 --model $m --target-betas 1 -0.5 0.5 --trials 1 \
+    --iterations 1 --quiet > "$dir/m_$m.csv" 2> "$dir/m_$m.err" || fail "body on the $m model"
+  grep -qi "falling back\|using the embedded default" "$dir/m_$m.err" && fail "$m fell back to the default"
+done
+gap() { awk '$1 == "1" { print $2 }' "$dir/m_$1.csv"; }
+differ() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d > 1e-3 * a) }'; }
+differ "$(gap neutral)" "$(gap female)" || fail "female run gives the neutral run's gap"
+differ "$(gap female)" "$(gap male)" || fail "male run gives the female run's gap"
+# Holds (issue 13): the target's height held in every grid; the title says so and the time
+# spent projecting is reported.
+out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --hold height \
+      --hold mass 2>"$dir/hold.err")
+echo "$out"
+grep -q "holding the target's height, mass" <<<"$out" || fail "body --hold: no hold in the title"
+grep -q "cells projected" "$dir/hold.err" || fail "body --hold: no projection timing"
 
 # Bad input: a clear message and a non-zero exit, never a crash.
 for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2" "--bogus 1" \
             "--function rosenbrock --optimum 0.5" "--function body --user argmax" \
             "--function body --jnd-mm -1" "--function body --target-betas 1 2 3 4 5 6 7 8 9 10 11" \
-            "--function body --model /nonexistent.npz" "--function body --grid 7"; do
+            "--function body --model /nonexistent.npz" "--function body --grid 7" \
+            "--function body --hold weight"; do
   if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
-  echo "$err" | grep -qi "error" || fail "no error message for: $args"
+  grep -qi "error" <<<"$err" || fail "no error message for: $args"
 done
 echo "ok"

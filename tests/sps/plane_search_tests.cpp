@@ -302,3 +302,98 @@ TEST_CASE("a perceptual scale survives the JSON round trip and is validated", "[
   CHECK_THROWS_AS(search.set_perceptual_scale(Eigen::Vector3d(1.0, 0.0, 1.0)),
                   std::invalid_argument);
 }
+
+TEST_CASE("with a perceptual scale the search starts on the two most visible directions",
+          "[search][person]") {
+  const Eigen::Vector4d scale(30.0, 300.0, 10.0, 60.0);
+  const sps::Plane p = sps::visible_first_plane(scale);
+  CHECK(p.c.isApproxToConstant(0.5));
+  CHECK(p.u.isApprox(sps::kVisibleFirstPlaneExtent * Eigen::Vector4d::Unit(1)));
+  CHECK(p.v.isApprox(sps::kVisibleFirstPlaneExtent * Eigen::Vector4d::Unit(3)));
+  CHECK(inside_box(p));
+
+  sps::PlaneSearch search(options(4, 9));
+  CHECK_FALSE(search.use_visible_first_plane());  // no scale yet
+  search.set_perceptual_scale(scale);
+  REQUIRE(search.use_visible_first_plane());
+  CHECK(same_plane(search.current_plane(), p));
+  search.submit(search.current_plane().point(0.5, 0.5));
+  const sps::Plane after = search.current_plane();
+  CHECK_FALSE(search.use_visible_first_plane());  // only before the first submission
+  CHECK(same_plane(search.current_plane(), after));
+  search.start_over();
+  CHECK(same_plane(search.current_plane(), p));
+}
+
+TEST_CASE("a perceptual scale softens the likelihood and removing it restores it",
+          "[search][person]") {
+  sps::SearchOptions o = options(3, 5);
+  o.model.btl_scale = 0.02;
+  o.perceptual_btl_scale = 0.7;
+  sps::PlaneSearch search(o);
+  CHECK(search.options().model.btl_scale == 0.02);
+  search.set_perceptual_scale(Eigen::Vector3d(400.0, 40.0, 4.0));
+  CHECK(search.options().model.btl_scale == 0.7);
+  // Length-scale factors inverse to the scale, relative to the geometric mean (40 here).
+  const Eigen::VectorXd& f = search.options().model.length_scale_factors;
+  REQUIRE(f.size() == 3);
+  CHECK(f(0) == Approx(0.1));
+  CHECK(f(1) == Approx(1.0));
+  CHECK(f(2) == Approx(10.0));
+  search.submit(search.current_plane().c + 0.3 * search.current_plane().u);
+  // The JSON keeps both temperatures.
+  auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK(restored.options().model.btl_scale == 0.7);
+  CHECK(restored.options().perceptual_btl_scale == 0.7);
+  CHECK(restored.options().centre_on_mean_maximum);
+  restored.set_perceptual_scale(Eigen::VectorXd());
+  CHECK(restored.options().model.btl_scale == 0.02);
+  CHECK(restored.options().model.length_scale_factors.size() == 0);
+  o.perceptual_btl_scale = 0.0;
+  CHECK_THROWS_AS(sps::PlaneSearch(o), std::invalid_argument);
+}
+
+TEST_CASE("with a perceptual scale planes are centred on the posterior-mean maximum",
+          "[search][person]") {
+  // Random planes keep c = x+ exactly (SPS planes may shift it to keep the plane in the box).
+  sps::SearchOptions o = options(3, 21, sps::Method::kSpsRandom);
+  o.perceptual_scale = Eigen::Vector3d(100.0, 50.0, 30.0);
+  sps::PlaneSearch search(o);
+  const Eigen::Vector3d goal(0.3, 0.6, 0.45);
+  for (int it = 0; it < 6; ++it) {
+    // The point of the plane's 5x5 lattice nearest the goal, as a careful user would pick.
+    const sps::Plane& p = search.current_plane();
+    Eigen::VectorXd best = p.c;
+    for (double s = -1.0; s <= 1.0; s += 0.5) {
+      for (double t = -1.0; t <= 1.0; t += 0.5) {
+        const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
+        if ((x - goal).norm() < (best - goal).norm()) best = x;
+      }
+    }
+    search.submit(best);
+    const Eigen::VectorXd c = search.current_plane().c;
+    INFO("iteration " << it << " c " << c.transpose());
+    CHECK((c.array() >= 0.0).all());
+    CHECK((c.array() <= 1.0).all());
+    // The centre's posterior mean is at least that of every observed point.
+    const auto& model = search.model();
+    for (Eigen::Index k = 0; k < model.points().cols(); ++k) {
+      CHECK(search.posterior_mean(c) >= search.posterior_mean(model.points().col(k)) - 1e-9);
+    }
+  }
+}
+
+TEST_CASE("a point the user set directly is the next plane's centre", "[search][person]") {
+  for (auto method : {sps::Method::kSps, sps::Method::kSpsRandom}) {
+    sps::SearchOptions o = options(4, 13, method);
+    o.perceptual_scale = Eigen::Vector4d(300.0, 60.0, 40.0, 20.0);
+    sps::PlaneSearch search(o);
+    search.submit(search.current_plane().point(0.5, -0.5));
+    // Near a bound, where an SPS plane would otherwise move its centre forward.
+    const Eigen::Vector4d x(0.03, 0.5, 0.97, 0.4);
+    search.submit(x, {{x, search.current_plane().c}}, {}, /*set_directly=*/true);
+    CHECK((search.current_plane().c - x).norm() < 1e-12);
+    // (Random planes are clamped when shown; SPS planes lie inside the box.)
+    if (method == sps::Method::kSps) CHECK(inside_box(search.current_plane()));
+  }
+}

@@ -28,6 +28,31 @@ std::vector<int> vertices_where(const TriMesh& mesh, bool top) {
   return ids;
 }
 
+// Vertex normals averaged over the mesh neighbourhood (a few centimetres): the bump fields
+// (belly, hips) push along them, and raw normals turn quickly in creases, where pushing along
+// them folds the surface.
+std::vector<std::vector<int>> vertex_neighbours(const TriMesh& mesh) {
+  std::vector<std::vector<int>> neighbours(mesh.vertices.size());
+  for (const auto& f : mesh.faces)
+    for (int a = 0; a < 3; ++a) neighbours[f[a]].push_back(f[(a + 1) % 3]);
+  return neighbours;  // a closed manifold: each edge once per direction, so both ends listed
+}
+
+std::vector<Vec3> smoothed_normals(const TriMesh& mesh, int iterations) {
+  std::vector<Vec3> n = vertex_normals(mesh);
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(mesh);
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Vec3> next(n.size());
+    for (std::size_t v = 0; v < n.size(); ++v) {
+      Vec3 sum = n[v];
+      for (int u : neighbours[v]) sum += 0.5 * n[u];
+      next[v] = sum.normalized();
+    }
+    n.swap(next);
+  }
+  return n;
+}
+
 GeneratedModel build_model(const std::string& name, const Template& tpl,
                            const DeformationModel& deformation, const Eigen::MatrixXd& theta,
                            int components);
@@ -60,7 +85,7 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   const Skeleton& skeleton = mannequin.skeleton();
   // Rig weights (4 influences, for glTF) and broader weights for the shape deformation.
   tpl.rig_weights = skin_weights(mesh.vertices, skeleton, 0.22, 4);
-  const Eigen::MatrixXd deform_weights = skin_weights(mesh.vertices, skeleton, 0.45, 0);
+  const Eigen::MatrixXd deform_weights = skin_weights(mesh.vertices, skeleton, 1.0, 0);
   tpl.regressor = joint_regressor(mesh.vertices, skeleton);
   for (int j = 0; j < kJointCount; ++j) {
     Vec3 fit = Vec3::Zero();
@@ -69,7 +94,8 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
     tpl.joint_fit_error = std::max(tpl.joint_fit_error, (fit - skeleton.joints[j]).norm());
   }
 
-  const DeformationModel deformation(mesh.vertices, vertex_normals(mesh), skeleton, deform_weights);
+  DeformationModel deformation(mesh.vertices, smoothed_normals(mesh, 8), skeleton, deform_weights);
+  deformation.smooth_fields(vertex_neighbours(mesh), 36);
   const int P = deformation.parameter_count();
   auto thetas = [&](bool female) {
     const std::vector<Anthropometry> people =

@@ -346,10 +346,14 @@ void relax(TriMesh& mesh, const RemeshOptions& opt) {
 }  // namespace
 
 void remesh(TriMesh& mesh, const RemeshOptions& options) {
-  collapse_short_edges(mesh, options);
-  for (int it = 0; it < options.relax_iterations; ++it) {
-    flip_edges(mesh);
-    relax(mesh, options);
+  // Two rounds: the first collapse leaves edges that its checks refused next to slivers; after
+  // flips and relaxation most of them can go.
+  for (int round = 0; round < 2; ++round) {
+    collapse_short_edges(mesh, options);
+    for (int it = 0; it < options.relax_iterations; ++it) {
+      flip_edges(mesh);
+      relax(mesh, options);
+    }
   }
 }
 

@@ -92,14 +92,16 @@ Mannequin::Mannequin() {
   J[kSpine3] = Vec3(0, 1.27, -0.02);
   J[kNeck] = Vec3(0, 1.45, -0.025);
   J[kHead] = Vec3(0, 1.54, 0.0);
-  J[kLeftHip] = Vec3(0.085, 0.865, 0.0);
-  J[kLeftKnee] = Vec3(0.106, 0.48, 0.01);
-  J[kLeftAnkle] = Vec3(0.118, 0.075, -0.02);
-  J[kLeftFoot] = Vec3(0.128, 0.02, 0.10);
+  J[kLeftHip] = Vec3(0.09, 0.865, 0.0);
+  J[kLeftKnee] = Vec3(0.116, 0.48, 0.01);
+  J[kLeftAnkle] = Vec3(0.128, 0.075, -0.02);
+  J[kLeftFoot] = Vec3(0.138, 0.02, 0.10);
   J[kLeftCollar] = Vec3(0.045, 1.385, -0.02);
   J[kLeftShoulder] = Vec3(0.175, 1.385, -0.03);
-  // A-pose: the arms hang 44 degrees from the vertical, palms facing the thighs.
-  const double arm_angle = 44.0 * M_PI / 180.0;
+  // A-pose: the arms hang 50 degrees from the vertical, palms facing the thighs; wide enough
+  // that armpits stay open for bodies far outside the population (betas of +-3 on several
+  // components at once).
+  const double arm_angle = 50.0 * M_PI / 180.0;
   const Vec3 d_upper(std::sin(arm_angle), -std::cos(arm_angle), 0.0);
   const Vec3 d_fore = Vec3(std::sin(arm_angle), -std::cos(arm_angle), 0.08).normalized();
   J[kLeftElbow] = J[kLeftShoulder] + 0.27 * d_upper;
@@ -138,7 +140,7 @@ Mannequin::Mannequin() {
     br[kLeftKnee + o] = 0.045;
     be[kLeftAnkle + o] = J[kLeftFoot + o];
     br[kLeftAnkle + o] = 0.035;
-    be[kLeftFoot + o] = M(Vec3(0.135, 0.02, 0.17));
+    be[kLeftFoot + o] = M(Vec3(0.145, 0.02, 0.17));
     br[kLeftFoot + o] = 0.025;
     be[kLeftCollar + o] = J[kLeftShoulder + o];
     br[kLeftCollar + o] = 0.05;
@@ -181,7 +183,22 @@ Mannequin::Mannequin() {
   // Head: cranium, jaw, nose, ears.
   head_parts_.push_back({ellipsoid(Vec3(0, 1.595, 0.005), Y, X, 0.105, 0.077, 0.097), 0.0});
   head_parts_.push_back({ellipsoid(Vec3(0, 1.535, 0.035), Y, X, 0.045, 0.056, 0.06), 0.03});
-  head_parts_.push_back({ellipsoid(Vec3(0, 1.575, 0.096), Y, X, 0.022, 0.012, 0.018), 0.015});
+  // Face: brow ridge, nose (bridge to tip, with the wings), cheeks, lips, chin; the eye
+  // sockets are carved out below the brow (head_cuts_).
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.621, 0.086), Y, X, 0.011, 0.05, 0.014), 0.014});
+  head_parts_.push_back({capsule(Vec3(0, 1.602, 0.096), Vec3(0, 1.566, 0.117), X, 0.0075, 0.006,
+                                 0.0105, 0.009, 0.006, 0.008),
+                         0.01});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.562, 0.104), Y, X, 0.008, 0.016, 0.01), 0.008});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.539, 0.097), Y, X, 0.0065, 0.021, 0.009), 0.006});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.525, 0.095), Y, X, 0.007, 0.018, 0.009), 0.006});
+  head_parts_.push_back({ellipsoid(Vec3(0, 1.499, 0.079), Y, X, 0.017, 0.022, 0.017), 0.016});
+  for (double sx : {1.0, -1.0}) {
+    head_parts_.push_back(
+        {ellipsoid(Vec3(sx * 0.045, 1.567, 0.068), Y, X, 0.022, 0.022, 0.024), 0.02});
+    head_cuts_.push_back(
+        {ellipsoid(Vec3(sx * 0.031, 1.599, 0.101), Y, X, 0.013, 0.016, 0.012), 0.008});
+  }
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.076, 1.588, -0.005), Y, X, 0.03, 0.012, 0.02), 0.012});
@@ -203,14 +220,27 @@ Mannequin::Mannequin() {
     side.arm.push_back({capsule(el, wr, n, 0.037, 0.041, 0.019, 0.028, 0.03, 0.02), 0.025});
     side.arm.push_back({ellipsoid(el + 0.08 * df + 0.004 * n, df, n, 0.09, 0.035, 0.042), 0.03});
     side.arm.push_back(
-        {capsule(wr + 0.012 * df, wr + 0.085 * df, n, 0.0165, 0.038, 0.0145, 0.042, 0.015, 0.012),
+        {capsule(wr + 0.012 * df, wr + 0.075 * df, n, 0.0165, 0.038, 0.0145, 0.042, 0.015, 0.012),
          0.03});
-    side.arm.push_back(
-        {capsule(wr + 0.095 * df, wr + 0.168 * df, n, 0.0115, 0.037, 0.0085, 0.028, 0.012, 0.014),
-         0.012});
     const Vec3 zf = M(Vec3(0, 0, 1));
+    // Four fingers, fanned slightly so that they part beyond the knuckles: index (on the
+    // thumb's side, +w) to little finger.
+    {
+      const Vec3 w = (zf - df * df.dot(zf) - n * n.dot(zf)).normalized();
+      const double offset[4] = {0.0285, 0.0095, -0.0095, -0.0275};
+      const double angle[4] = {0.20, 0.07, -0.07, -0.20};
+      const double length[4] = {0.072, 0.080, 0.074, 0.060};
+      const double radius[4] = {0.0085, 0.0088, 0.0083, 0.0074};
+      for (int f = 0; f < 4; ++f) {
+        const Vec3 base = wr + 0.078 * df + offset[f] * w;
+        const Vec3 dir = (std::cos(angle[f]) * df + std::sin(angle[f]) * w).normalized();
+        side.arm.push_back({capsule(base, base + length[f] * dir, n, 0.0078, radius[f], 0.0062,
+                                    0.8 * radius[f], 0.008, 0.007),
+                            0.008});
+      }
+    }
     side.arm.push_back(
-        {capsule(wr + 0.03 * df + 0.028 * zf - 0.004 * n, wr + 0.09 * df + 0.055 * zf - 0.01 * n, n,
+        {capsule(wr + 0.03 * df + 0.03 * zf - 0.004 * n, wr + 0.08 * df + 0.07 * zf - 0.01 * n, n,
                  0.012, 0.012, 0.009, 0.009, 0.01, 0.009),
          0.012});
     (void)M;
@@ -219,7 +249,7 @@ Mannequin::Mannequin() {
     side.leg.push_back(
         {capsule(hp + Vec3(0, 0.03, 0), kn, X, 0.084, 0.090, 0.047, 0.052, 0.05, 0.04), 0.0});
     side.leg.push_back(
-        {capsule(kn + Vec3(0, 0.03, 0), an, X, 0.047, 0.051, 0.029, 0.033, 0.04, 0.03), 0.06});
+        {capsule(kn + Vec3(0, 0.03, 0), an, X, 0.047, 0.051, 0.029, 0.033, 0.04, 0.03), 0.02});
     side.leg.push_back(
         {ellipsoid(kn + 0.28 * (an - kn) + Vec3(0, 0, -0.018), Y, X, 0.11, 0.046, 0.049), 0.04});
     const Vec3 heel = Vec3(an.x(), 0.036, an.z() - 0.035);
@@ -280,6 +310,7 @@ double Mannequin::field(const Vec3& p) const {
   for (const auto& [c, k] : torso_parts_) d = smooth_min(d, c.distance(p), k);
   double head = 1e9;
   for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
+  for (const auto& [c, k] : head_cuts_) head = -smooth_min(-head, c.distance(p), k);
   d = smooth_min(d, head, 0.03);
   for (const Side& s : sides_) {
     const double k = 0.045 * (1.0 - smoothstep(0.10, 0.22, (p - s.shoulder).norm()));
@@ -325,11 +356,13 @@ double Mannequin::target_edge(const Vec3& p) const {
   for (int s = 0; s < 2; ++s) {
     const Vec3& w = skeleton_.joints[kLeftWrist + s];
     L = std::min(
-        L, 0.009 + 0.0085 * smoothstep(0.06, 0.16, (p - skeleton_.joints[kLeftHand + s]).norm()));
+        L, 0.007 + 0.0105 * smoothstep(0.09, 0.14, (p - skeleton_.joints[kLeftHand + s]).norm()));
     (void)w;
   }
   // Head and face.
   L = std::min(L, 0.011 + 0.0065 * smoothstep(0.10, 0.16, (p - Vec3(0, 1.59, 0.02)).norm()));
+  // The face (brow, eyes, nose, lips, chin) finer still.
+  L = std::min(L, 0.0075 + 0.0035 * smoothstep(0.035, 0.07, (p - Vec3(0, 1.56, 0.095)).norm()));
   // Feet.
   if (p.y() < 0.12) L = std::min(L, 0.012 + 0.0055 * smoothstep(0.06, 0.12, p.y()));
   return L;

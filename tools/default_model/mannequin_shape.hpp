@@ -105,7 +105,8 @@ class Mannequin {
   std::vector<TorsoLevel> levels_;
   std::vector<std::pair<Capsule, double>> torso_parts_;  // blended into the loft
   std::vector<std::pair<Capsule, double>> head_parts_;
-  std::array<Side, 2> sides_;  // 0 = left (+x), 1 = right
+  std::vector<std::pair<Capsule, double>> head_cuts_;  // carved out of the head (eye sockets)
+  std::array<Side, 2> sides_;                          // 0 = left (+x), 1 = right
 };
 
 double smooth_min(double a, double b, double k);

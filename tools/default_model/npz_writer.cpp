@@ -1,5 +1,7 @@
 #include "npz_writer.hpp"
 
+#include <stdexcept>
+
 #include <zlib.h>
 
 namespace default_model {
@@ -37,6 +39,26 @@ void put32(std::vector<std::uint8_t>& o, std::uint32_t v) {
   put16(o, v >> 16);
 }
 
+// Raw deflate (zip method 8) at the highest level: the joint regressor and the skinning
+// weights are mostly zeros and shrink to a few percent, so the files stay small enough to
+// embed. zlib's output bytes may differ between its versions; the arrays never do.
+std::vector<std::uint8_t> deflate_raw(const std::vector<std::uint8_t>& in) {
+  z_stream zs{};
+  if (deflateInit2(&zs, 9, Z_DEFLATED, -15, 9, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw std::runtime_error("zlib: deflateInit2 failed");
+  std::vector<std::uint8_t> out(deflateBound(&zs, static_cast<uLong>(in.size())));
+  zs.next_in = const_cast<Bytef*>(in.data());
+  zs.avail_in = static_cast<uInt>(in.size());
+  zs.next_out = out.data();
+  zs.avail_out = static_cast<uInt>(out.size());
+  const int rc = deflate(&zs, Z_FINISH);
+  const std::size_t written = zs.total_out;
+  deflateEnd(&zs);
+  if (rc != Z_STREAM_END) throw std::runtime_error("zlib: deflate did not finish");
+  out.resize(written);
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> npz_bytes(const std::vector<NpyArray>& arrays) {
@@ -50,30 +72,32 @@ std::vector<std::uint8_t> npz_bytes(const std::vector<NpyArray>& arrays) {
         crc32(crc32(0L, Z_NULL, 0), payload.data(), static_cast<uInt>(payload.size())));
     const std::uint32_t offset = static_cast<std::uint32_t>(out.size());
     const std::uint32_t size = static_cast<std::uint32_t>(payload.size());
+    const std::vector<std::uint8_t> packed = deflate_raw(payload);
+    const std::uint32_t packed_size = static_cast<std::uint32_t>(packed.size());
     // Local file header.
     put32(out, 0x04034b50);
     put16(out, 20);  // version needed
     put16(out, 0);   // flags
-    put16(out, 0);   // stored
+    put16(out, 8);   // deflated
     put16(out, dos_time);
     put16(out, dos_date);
     put32(out, crc);
-    put32(out, size);
+    put32(out, packed_size);
     put32(out, size);
     put16(out, static_cast<std::uint32_t>(name.size()));
     put16(out, 0);
     out.insert(out.end(), name.begin(), name.end());
-    out.insert(out.end(), payload.begin(), payload.end());
+    out.insert(out.end(), packed.begin(), packed.end());
     // Central directory record.
     put32(central, 0x02014b50);
     put16(central, 20);  // made by
     put16(central, 20);  // needed
     put16(central, 0);
-    put16(central, 0);
+    put16(central, 8);  // deflated
     put16(central, dos_time);
     put16(central, dos_date);
     put32(central, crc);
-    put32(central, size);
+    put32(central, packed_size);
     put32(central, size);
     put16(central, static_cast<std::uint32_t>(name.size()));
     put16(central, 0);  // extra

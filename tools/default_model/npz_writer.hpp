@@ -1,5 +1,6 @@
-// A minimal, byte-deterministic .npz writer: .npy v1.0 arrays in an uncompressed ("stored")
-// zip archive, as numpy.savez writes them, with fixed timestamps.
+// A minimal, deterministic .npz writer: .npy v1.0 arrays in a deflated zip archive, as
+// numpy.savez_compressed writes them, with fixed timestamps (the bytes depend only on the
+// arrays and the zlib version).
 #pragma once
 
 #include <cstdint>

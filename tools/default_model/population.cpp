@@ -56,12 +56,13 @@ Eigen::MatrixXd cholesky_of(const SurveyTable& t) {
 
 // The independent factors' amplitudes below are per unit of this; 1.45 makes each of them big
 // enough to be seen in a grid cell (1 px ~ 4.5 mm) as its own principal component.
-constexpr double kFactorScale = 1.45;
+constexpr double kFactorScale = 1.5;
+constexpr double kStatureTruncation = 1.5;
 
 }  // namespace
 
 std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
-                                             double truncate) {
+                                             double truncate_survey, double truncate_factors) {
   const SurveyTable& t = female ? kFemale : kMale;
   const Eigen::MatrixXd L = cholesky_of(t);
   Normal normal(seed);
@@ -71,14 +72,19 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     Anthropometry a;
     a.female = female;
     Eigen::VectorXd z(kSurveyMeasures);
-    for (int k = 0; k < kSurveyMeasures; ++k) z[k] = normal.truncated(truncate);
+    // Stature (the first measure: z[0] alone makes it, the Cholesky factor being lower
+    // triangular) is held to a narrower range than the other measures, so that no body along
+    // a single component at +-3, nor far combinations of several, falls below 1.45 m.
+    for (int k = 0; k < kSurveyMeasures; ++k)
+      z[k] = normal.truncated(k == k_stature ? kStatureTruncation * truncate_survey / 1.8
+                                             : truncate_survey);
     z = L * z;
     for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
     IndependentFactors& f = a.f;
     for (double* x : {&f.fat_distribution, &f.fat_layer, &f.muscle, &f.bust, &f.shoulder_slope,
                       &f.posture, &f.lordosis, &f.head_forward, &f.neck_length,
                       &f.shoulders_forward, &f.knee_alignment, &f.limb_fat})
-      *x = kFactorScale * normal.truncated(truncate);
+      *x = kFactorScale * normal.truncated(truncate_factors);
     people.push_back(a);
   }
   return people;
@@ -117,6 +123,10 @@ constexpr int kParams = kShift + 1;
 
 // Template landmarks (the mannequin is 1.70 m tall, see mannequin_shape.cpp).
 constexpr double kTemplateStature = 1.70;
+// Soft-tissue layers are amplitudes at this distance from the bone (about a thigh's radius),
+// growing in proportion to the distance up to kLayerCap (the trunk).
+constexpr double kLayerRadius = 0.08;
+constexpr double kLayerCap = 0.11;
 
 double gauss(double x, double centre, double sd) {
   const double t = (x - centre) / sd;
@@ -167,6 +177,32 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     const Vec3& p = template_vertices[i];
     const Vec3& n = template_normals[i];
     auto w = [&](int j) { return weights(i, j); };
+    // Soft tissue grows less at the crotch, where the layers of both thighs and the buttocks
+    // meet in a tight crease that folds when all of them shrink or grow far at once; the hip
+    // and buttock fields (gluteofemoral, lordosis) fade there too.
+    const double crotch_core =
+        1.0 - 0.8 * std::exp(-(p - Vec3(0, 0.78, -0.03)).squaredNorm() / (2 * 0.05 * 0.05));
+    const double crotch_fade =
+        crotch_core * (1.0 - 0.5 * std::exp(-0.5 * (std::pow(p.x() / 0.2, 2) +
+                                                    std::pow((p.y() - 0.79) / 0.045, 2))));
+    // The vertex's offset from its bones (weighted), in units of a thigh's radius: soft-tissue
+    // layers (fat, muscle) grow along it. A layer then scales each limb about its axis in
+    // proportion to the limb's thickness, so even far outside the population (betas of +-3
+    // on several thinning components at once) a thin forearm or calf shrinks towards its axis
+    // instead of being pushed through itself, and creases (armpit, knee pit) do not fold.
+    Vec3 radial = Vec3::Zero();
+    for (int j = 0; j < kJointCount; ++j) {
+      const double wj = w(j);
+      if (wj == 0.0) continue;
+      const Vec3 a = skeleton.bone_start[j], ab = skeleton.bone_end[j] - a;
+      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      radial += wj * (p - (a + t * ab));
+    }
+    {
+      const double r = radial.norm();
+      radial = r > 1e-9 ? Vec3(radial / r * std::min(r, kLayerCap) / kLayerRadius) : Vec3(n);
+      radial *= crotch_fade;
+    }
     for (int j = 0; j < kJointCount; ++j) {
       const double wj = w(j);
       if (wj == 0.0) continue;
@@ -205,16 +241,17 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
                           (0.4 + 0.6 * gauss(p.x(), 0.0, 0.14)) *
                           (0.6 * n + Vec3(0, 0, 0.4 * front)));
     // Hips, buttocks and outer thighs (gynoid fat), fading down the thighs.
-    set_field(kGluteofemoral, torso * gauss(p.y(), 0.83, 0.11) * (0.55 + 0.45 * back) * n);
+    set_field(kGluteofemoral,
+              crotch_core * torso * gauss(p.y(), 0.83, 0.11) * (0.55 + 0.45 * back) * n);
     // Fat layer: all over the torso and limbs, thinner on head, hands and feet.
     set_field(kFatLayer,
-              above_feet * std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * n);
+              above_feet * std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * radial);
     // Muscles: deltoids and upper arms, forearms, trapezius, pectorals, thighs, calves.
     const double muscle = w(kLeftShoulder) + w(kRightShoulder) +
                           0.3 * (w(kLeftElbow) + w(kRightElbow)) + w(kLeftCollar) +
                           w(kRightCollar) + w(kSpine3) * front * gauss(p.y(), 1.28, 0.06) +
                           0.8 * (w(kLeftHip) + w(kRightHip)) + 0.8 * (w(kLeftKnee) + w(kRightKnee));
-    set_field(kMuscle, above_feet * muscle * n);
+    set_field(kMuscle, above_feet * muscle * radial);
     // Posture: the upper body leans forward; arms move with their shoulder.
     const double lean =
         (1.0 - arm) * posture_height(p.y()) + arm * posture_height(J[kLeftShoulder].y());
@@ -222,10 +259,12 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     set_field(kHeadForward, Vec3(0, 0, (1.0 - arm) * head_forward_height(p.y())));
     // Lordosis: buttocks back, lower back in (forwards), belly out.
     {
-      const double rear = smoothstep(0.04, -0.08, p.z());
+      // A wide transition from front to rear: a steeper one folds the sides of the hips when
+      // the buttocks move forward far (lordosis at -3 on top of other components).
+      const double rear = smoothstep(0.08, -0.14, p.z());
       const double dz = (-gauss(p.y(), 0.84, 0.12) + 0.8 * gauss(p.y(), 1.05, 0.10)) * rear +
-                        0.4 * gauss(p.y(), 0.98, 0.10) * front;
-      set_field(kLordosis, Vec3(0, 0, torso * dz));
+                        0.5 * gauss(p.y(), 0.98, 0.10) * front;
+      set_field(kLordosis, Vec3(0, 0, crotch_core * torso * dz));
     }
     // Rounded shoulders: arms and the shoulder girdle forward.
     set_field(kShouldersForward, Vec3(0, 0, arm + 0.6 * (w(kLeftCollar) + w(kRightCollar))));
@@ -243,11 +282,28 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
       const double limbs = 0.6 * (w(kLeftShoulder) + w(kRightShoulder)) +
                            0.25 * (w(kLeftElbow) + w(kRightElbow)) + (w(kLeftHip) + w(kRightHip)) +
                            0.6 * (w(kLeftKnee) + w(kRightKnee));
-      set_field(kLimbFat, above_feet * (limbs - 0.4 * torso * (1.0 - limbs)) * n);
+      set_field(kLimbFat, above_feet * (limbs - 0.4 * torso * (1.0 - limbs)) * radial);
     }
     basis_(3 * i + 1, kShift) = 1.0;
     if (p.y() < 0.03) sole_vertices_.push_back(i);
   }
+}
+
+void DeformationModel::smooth_fields(const std::vector<std::vector<int>>& neighbours,
+                                     int iterations) {
+  const int V = static_cast<int>(neighbours.size());
+  Eigen::MatrixXd fields(3 * V, kFieldCount);
+  fields = basis_.middleCols(kFields, kFieldCount);
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::MatrixXd next(3 * V, kFieldCount);
+    for (int v = 0; v < V; ++v) {
+      Eigen::Matrix<double, 3, kFieldCount> sum = fields.middleRows<3>(3 * v);
+      for (int u : neighbours[v]) sum += fields.middleRows<3>(3 * u) / neighbours[v].size();
+      next.middleRows<3>(3 * v) = 0.5 * sum;
+    }
+    fields.swap(next);
+  }
+  basis_.middleCols(kFields, kFieldCount) = fields;
 }
 
 Eigen::VectorXd DeformationModel::rest_parameters() const {
@@ -269,8 +325,11 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // up the rest of the stature.
   const double s = r(k_stature);
   const double ls = r(k_crotch_height);
-  const double hip_y = J[kLeftHip].y();
-  const double ts = (kTemplateStature * s - hip_y * ls) / (kTemplateStature - hip_y);
+  // The legs hang from the pelvis joint (everything below it scales by ls), so the torso and
+  // head above it take ts with 1.70 s = pelvis_y ls + (1.70 - pelvis_y) ts: a longer leg at
+  // the same stature shortens the trunk and leaves the stature alone.
+  const double pelvis_y = J[kPelvis].y();
+  const double ts = (kTemplateStature * s - pelvis_y * ls) / (kTemplateStature - pelvis_y);
   const double upper_arm = r(k_upper_arm_length);
   // forearm + hand length: the forearm takes what the hand does not.
   const double hand = r(k_hand_length);
@@ -310,14 +369,14 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   place(kSpine2, Vec3(1, ts, s));
   place(kSpine3, Vec3(1, ts, s));
   place(kNeck, Vec3(1, ts, chest_d));
-  // Neck length: +-1 SD moves the head by 8 mm.
+  // Neck length: +-1 SD moves the head by 13 mm (times kFactorScale).
   place(kHead, Vec3(1, head * ts / s, head));
-  Jn[kHead].y() += 0.018 * f.neck_length;
+  Jn[kHead].y() += 0.013 * f.neck_length;
   for (int side = 0; side < 2; ++side) {
     place(kLeftCollar + side, Vec3(shoulder, ts, s));
     place(kLeftShoulder + side, Vec3(shoulder, ts, s));
-    // Shoulder slope: the shoulder joint 12 mm higher or lower per SD.
-    Jn[kLeftShoulder + side].y() += 0.012 * f.shoulder_slope;
+    // Shoulder slope: the shoulder joint 23 mm higher or lower per SD (times kFactorScale).
+    Jn[kLeftShoulder + side].y() += 0.023 * f.shoulder_slope;
     place(kLeftElbow + side, Vec3(upper_arm, upper_arm, upper_arm));
     place(kLeftWrist + side, Vec3(forearm, forearm, forearm));
     place(kLeftHand + side, Vec3(hand, hand, hand));
@@ -357,16 +416,16 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double breast = a.female ? std::max(0.0, 0.024 + 0.006 * chest_z + 0.016 * f.bust)
                                  : std::max(0.0, 0.004 + 0.002 * f.muscle + 0.002 * chest_z);
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
-  t[kFields + kBelly] = 0.0125 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
-  t[kFields + kGluteofemoral] = -0.012 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
+  t[kFields + kBelly] = 0.0155 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
+  t[kFields + kGluteofemoral] = -0.013 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
   t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
   t[kFields + kMuscle] = 0.006 * f.muscle + 0.002 * (a.female ? -1.0 : 1.0);
-  t[kFields + kPostureShear] = 0.018 * f.posture;
-  t[kFields + kHeadForward] = 0.04 * f.head_forward;
+  t[kFields + kPostureShear] = 0.021 * f.posture;
+  t[kFields + kHeadForward] = 0.045 * f.head_forward;
   t[kFields + kLordosis] = 0.021 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
-  t[kFields + kShouldersForward] = 0.009 * f.shoulders_forward;
-  t[kFields + kLimbFat] = 0.0072 * f.limb_fat;
-  t[kFields + kKneeAlignment] = 0.005 * f.knee_alignment;
+  t[kFields + kShouldersForward] = 0.0115 * f.shoulders_forward;
+  t[kFields + kLimbFat] = 0.006 * f.limb_fat;
+  t[kFields + kKneeAlignment] = 0.0105 * f.knee_alignment;
   // Soles on y = 0.
   double lowest = 1e9;
   for (int i : sole_vertices_) lowest = std::min(lowest, basis_.row(3 * i + 1).dot(t));

@@ -46,10 +46,11 @@ struct Anthropometry {
 };
 
 // Deterministic: the same seed gives the same population on every platform with IEEE doubles.
-// Each standard normal (of the survey's correlated measures and of the independent factors)
-// is truncated at `truncate` SD.
+// The standard normals behind the survey's correlated measures are truncated at
+// `truncate_survey` SD, those of the independent factors at `truncate_factors` SD.
 std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
-                                             double truncate = 2.3);
+                                             double truncate_survey = 1.8,
+                                             double truncate_factors = 2.3);
 
 // The reference person the template mannequin was built for: the average of the female and
 // male survey means (1.69 m), with all independent factors 0.
@@ -66,6 +67,10 @@ class DeformationModel {
   Eigen::VectorXd parameters(const Anthropometry& a) const;
   Eigen::VectorXd rest_parameters() const;  // reproduces the template exactly
   Eigen::VectorXd vertices(const Eigen::VectorXd& theta) const { return basis_ * theta; }
+  // Averages the displacement fields (not the bone maps, which reproduce the template) over
+  // each vertex's mesh neighbours, `iterations` times: fields that turn quickly across a
+  // crease fold the surface there when several components push far along them at once.
+  void smooth_fields(const std::vector<std::vector<int>>& neighbours, int iterations);
 
  private:
   Eigen::MatrixXd basis_;

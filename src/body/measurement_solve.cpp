@@ -1,0 +1,236 @@
+#include "body/measurement_solve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+namespace body {
+
+MeasurementTarget parse_target(const std::string& text, bool value_required) {
+  const auto eq = text.find('=');
+  const std::string name = text.substr(0, eq);
+  const MeasurementKind* kind = find_measurement(name);
+  if (kind == nullptr) {
+    throw std::invalid_argument("unknown measurement '" + name + "' in '" + text +
+                                "' (known: " + measurement_names() + ")");
+  }
+  if (eq == std::string::npos) {
+    if (value_required) {
+      throw std::invalid_argument("'" + text + "' needs a value, e.g. " + name +
+                                  (kind->quantity == Quantity::kMass ? "=85" : "=1.80"));
+    }
+    return {kind, std::numeric_limits<double>::quiet_NaN()};
+  }
+  return {kind, parse_measurement_value(*kind, text.substr(eq + 1))};
+}
+
+MeasurementConstraints::MeasurementConstraints(std::shared_ptr<const Model> model,
+                                               std::vector<MeasurementTarget> targets,
+                                               double tolerance_share)
+    : model_(std::move(model)), targets_(std::move(targets)) {
+  if (!model_) throw std::invalid_argument("measurement targets need a body model");
+  tolerance_.resize(static_cast<Eigen::Index>(targets_.size()));
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    const auto& t = targets_[i];
+    if (t.kind == nullptr) throw std::invalid_argument("a measurement target has no name");
+    if (!std::isfinite(t.value) || t.value <= 0.0) {
+      throw std::invalid_argument(std::string("target ") + t.kind->name + " has no valid value");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (targets_[j].kind == t.kind) {
+        throw std::invalid_argument(std::string(t.kind->name) + " is given twice");
+      }
+    }
+    girths_ = girths_ || t.kind->needs_girths;
+    const std::string name = t.kind->name;
+    if (name == "chest") bands_ |= kChestBand;
+    if (name == "waist") bands_ |= kWaistBand;
+    if (name == "hips") bands_ |= kHipsBand;
+    tolerance_[static_cast<Eigen::Index>(i)] = tolerance_share * t.kind->hold_tolerance;
+  }
+  if (!targets_.empty()) {
+    const Eigen::VectorXd mean = values(Eigen::VectorXd::Constant(dims(), 0.5));
+    for (std::size_t i = 0; i < targets_.size(); ++i) {
+      if (!std::isfinite(mean[static_cast<Eigen::Index>(i)])) {
+        throw std::invalid_argument(std::string(targets_[i].kind->name) +
+                                    " cannot be measured on model \"" + model_->name +
+                                    "\" (see src/body/measurements.hpp for what it needs)");
+      }
+    }
+  }
+}
+
+Eigen::VectorXd MeasurementConstraints::values(const Eigen::VectorXd& x) const {
+  const Measurements m = measure(*model_, betas_from_unit(x), girths_, bands_);
+  Eigen::VectorXd v(static_cast<Eigen::Index>(targets_.size()));
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    v[static_cast<Eigen::Index>(i)] = m.*(targets_[i].kind->field);
+  }
+  return v;
+}
+
+Eigen::MatrixXd MeasurementConstraints::jacobian(const Eigen::VectorXd& x) const {
+  constexpr double h = 0.01;
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(targets_.size()), x.size());
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    Eigen::VectorXd lo = x, hi = x;
+    lo[k] = std::max(0.0, x[k] - h);
+    hi[k] = std::min(1.0, x[k] + h);
+    J.col(k) = (values(hi) - values(lo)) / (hi[k] - lo[k]);
+  }
+  return J;
+}
+
+Eigen::MatrixXd MeasurementConstraints::tangent(const Eigen::VectorXd& x,
+                                                const Eigen::MatrixXd& dirs) const {
+  if (targets_.empty()) return dirs;
+  return tangent(jacobian(x), dirs);
+}
+
+Eigen::MatrixXd MeasurementConstraints::tangent(const Eigen::MatrixXd& J,
+                                                const Eigen::MatrixXd& dirs) {
+  if (J.rows() == 0) return dirs;
+  // P = I - J^T (J J^T)^+ J, with a pseudo-inverse so dependent targets (height and BMI and
+  // mass together) do not blow up.
+  const Eigen::MatrixXd JJt = J * J.transpose();
+  const Eigen::MatrixXd inv = JJt.completeOrthogonalDecomposition().pseudoInverse();
+  return dirs - J.transpose() * (inv * (J * dirs));
+}
+
+Eigen::VectorXd MeasurementConstraints::scaled_residual(const Eigen::VectorXd& values) const {
+  Eigen::VectorXd r(values.size());
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    r[i] = (values[i] - targets_[static_cast<std::size_t>(i)].value) / tolerance_[i];
+  }
+  return r;
+}
+
+namespace {
+
+// The residual's size for accepting steps: NaN (a landmark lost) counts as infinitely far.
+double size_of(const Eigen::VectorXd& r) {
+  return r.allFinite() ? r.norm() : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+SolveResult MeasurementConstraints::solve(const Eigen::VectorXd& start, int max_iterations,
+                                          const Eigen::MatrixXd* jacobian_hint) const {
+  if (start.size() != dims()) throw std::invalid_argument("solve: start point has the wrong size");
+  const Eigen::Index K = start.size();
+  const Eigen::VectorXd x0 = start.cwiseMax(0.0).cwiseMin(1.0);
+  SolveResult result;
+  result.x = x0;
+  if (targets_.empty()) {
+    result.reached = true;
+    return result;
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(targets_.size());
+  const Eigen::VectorXd tol_inv = tolerance_.cwiseInverse();
+  Eigen::VectorXd x = x0;
+  Eigen::VectorXd r = scaled_residual(values(x));
+  ++result.evaluations;
+  Eigen::MatrixXd J;
+  bool fresh = false;
+  if (jacobian_hint != nullptr && jacobian_hint->rows() == m && jacobian_hint->cols() == K) {
+    J = tol_inv.asDiagonal() * *jacobian_hint;
+  } else {
+    J = tol_inv.asDiagonal() * jacobian(x);
+    result.evaluations += static_cast<int>(2 * K);
+    fresh = true;
+  }
+  for (int it = 0; it < max_iterations; ++it) {
+    result.iterations = it + 1;
+    // Within tolerance: done (the start point itself when it already meets the targets; each
+    // step below moved towards the start point as far as the constraints allowed).
+    if (r.allFinite() && r.cwiseAbs().maxCoeff() <= 1.0) break;
+    // Minimum-norm step towards x0 on the free coordinates: the linearized constraint
+    // r + J (x' - x) = 0 with the smallest |x' - x0|. Coordinates that the step would push
+    // through a face of the box are pinned there and the step is recomputed (an active set).
+    std::vector<bool> pinned(static_cast<std::size_t>(K), false);
+    Eigen::VectorXd next = x;
+    for (int pass = 0; pass < 4; ++pass) {
+      Eigen::MatrixXd Jf = J;
+      Eigen::VectorXd fixed = Eigen::VectorXd::Zero(K);  // pinned coordinates go to the face
+      Eigen::VectorXd d0 = x0 - x;  // desired move of the free coordinates (towards x0)
+      for (Eigen::Index k = 0; k < K; ++k) {
+        if (!pinned[static_cast<std::size_t>(k)]) continue;
+        fixed[k] = (next[k] < 0.5 ? 0.0 : 1.0) - x[k];
+        Jf.col(k).setZero(), d0[k] = 0.0;
+      }
+      // x' = x + fixed + d0 + Jf^T y with r + J (x' - x) = 0: the free part of the move is
+      // the one nearest to d0. Damped so an ill-conditioned J takes a shorter step.
+      const Eigen::MatrixXd A = Jf * Jf.transpose();
+      const double damping = 1e-9 * std::max(1.0, A.trace() / static_cast<double>(m));
+      const Eigen::VectorXd rhs = -r - J * fixed - Jf * d0;
+      const Eigen::VectorXd y = (A + damping * Eigen::MatrixXd::Identity(m, m)).ldlt().solve(rhs);
+      const Eigen::VectorXd step = fixed + d0 + Jf.transpose() * y;
+      next = x + step;
+      bool changed = false;
+      for (Eigen::Index k = 0; k < K; ++k) {
+        if (!pinned[static_cast<std::size_t>(k)] && (next[k] < 0.0 || next[k] > 1.0)) {
+          pinned[static_cast<std::size_t>(k)] = true;
+          changed = true;
+        }
+      }
+      if (!changed) break;
+    }
+    next = next.cwiseMax(0.0).cwiseMin(1.0);
+    // Backtracking on the residual (the constraints come first; the pull towards x0 is only
+    // followed while it does not lose them).
+    const double before = size_of(r);
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int ls = 0; ls < 6; ++ls, alpha *= 0.5) {
+      const Eigen::VectorXd trial = x + alpha * (next - x);
+      const Eigen::VectorXd rt = scaled_residual(values(trial));
+      ++result.evaluations;
+      if (size_of(rt) < before || (rt.allFinite() && rt.cwiseAbs().maxCoeff() <= 1.0)) {
+        x = trial, r = rt, accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      if (fresh) break;  // no descent even with a fresh Jacobian: the least-squares point
+      J = tol_inv.asDiagonal() * jacobian(x);
+      result.evaluations += static_cast<int>(2 * K);
+      fresh = true;
+      continue;
+    }
+    if (jacobian_hint == nullptr || alpha < 1.0) {
+      J = tol_inv.asDiagonal() * jacobian(x);
+      result.evaluations += static_cast<int>(2 * K);
+      fresh = true;
+    } else {
+      fresh = false;
+    }
+  }
+  result.x = x;
+  const Eigen::VectorXd v = values(x);
+  ++result.evaluations;
+  result.values.assign(v.data(), v.data() + v.size());
+  const Eigen::VectorXd rf = scaled_residual(v);
+  result.reached = rf.allFinite() && rf.cwiseAbs().maxCoeff() <= 1.0;
+  std::string missed, nearest;
+  for (std::size_t i = 0; i < targets_.size(); ++i) {
+    const auto& t = targets_[i];
+    const auto q = t.kind->quantity;
+    nearest += (nearest.empty() ? "" : ", ") + std::string(t.kind->name) + " " +
+               format_measurement(q, v[static_cast<Eigen::Index>(i)], Units::kMetric);
+    if (!(std::abs(rf[static_cast<Eigen::Index>(i)]) <= 1.0)) {
+      missed += (missed.empty() ? "" : ", ") + std::string(t.kind->name) + " " +
+                format_measurement(q, t.value, Units::kMetric);
+    }
+  }
+  result.message = result.reached
+                       ? "reached " + nearest
+                       : "out of reach in the search range (+-3 SD of model \"" + model_->name +
+                             "\"): " + missed + "; nearest reachable: " + nearest;
+  return result;
+}
+
+}  // namespace body

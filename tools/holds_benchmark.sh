@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Holds benchmark (issue 13): the body benchmark's zoom-jnd user with and without holding the
+# target's height (`simulate --function body --hold height`), gap per plane. Writes
+# docs/benchmarks/holds_{free,height}.csv and the "Holds" section of docs/benchmarks.md
+# (between its holds-begin/holds-end markers).
+#   usage: tools/holds_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 10 10)
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${1:-$ROOT/build}
+TRIALS=${2:-10}
+PLANES=${3:-10}
+APP=$BUILD/sequential-gallery
+OUT=$ROOT/docs/benchmarks
+mkdir -p "$OUT"
+LOG=$(mktemp)
+trap 'rm -f "$LOG"' EXIT
+common=(simulate --function body --user zoom-jnd --trials "$TRIALS" --iterations "$PLANES" --quiet)
+start=$(date +%s)
+"$APP" "${common[@]}" --csv "$OUT/holds_free.csv" >/dev/null
+mid=$(date +%s)
+"$APP" "${common[@]}" --hold height --csv "$OUT/holds_height.csv" 2>"$LOG" >/dev/null
+end=$(date +%s)
+/usr/bin/python3 - "$ROOT/docs/benchmarks.md" "$OUT" "$TRIALS" "$PLANES" $((mid - start)) $((end - mid)) \
+  "$(cat "$LOG")" <<'PYEOF'
+import csv, sys
+doc, out, trials, planes, t_free, t_hold, clock = sys.argv[1:8]
+free = list(csv.DictReader(open(f"{out}/holds_free.csv")))
+held = list(csv.DictReader(open(f"{out}/holds_height.csv")))
+lines = [
+    "<!-- holds-begin (tools/holds_benchmark.sh writes this section) -->",
+    "## Holds: searching with the target's height held",
+    "",
+    f"`tools/holds_benchmark.sh build {trials} {planes}`: the body benchmark above (zoom-jnd user,",
+    "JND 5 mm, 3x3 grid, 4 zoom levels, perceptual distance and scale, default model with 10",
+    f"components, random targets) for {trials} trials (seeds 1000 onwards) x {planes} planes, once",
+    "as it is and once with `--hold height`: every cell keeps the target body's height (the",
+    "user knows it), so the search explores only the other directions. Gap = RMS vertex",
+    "distance (mm) of the best body so far to the target.",
+    "",
+    "| plane | mean gap, free | mean gap, height held | median gap, free | median gap, height held |",
+    "|---|---|---|---|---|",
+]
+for f, h in zip(free, held):
+    lines.append(f"| {f['iteration']} | {float(f['mean_gap']):.2f} | {float(h['mean_gap']):.2f} | "
+                 f"{float(f['median_gap']):.2f} | {float(h['median_gap']):.2f} |")
+lines += ["", f"Wall time: {t_free} s free, {t_hold} s held (2 shared cores). Where the held time goes: "
+          f"{clock.strip()}.", "<!-- holds-end -->"]
+text = open(doc).read()
+begin, end = "<!-- holds-begin", "<!-- holds-end -->"
+if begin in text:
+    a = text.index(begin)
+    b = text.index(end) + len(end)
+    text = text[:a] + "\n".join(lines) + text[b:]
+else:
+    text = text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
+open(doc, "w").write(text)
+print("\n".join(lines))
+PYEOF
