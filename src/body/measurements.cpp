@@ -337,11 +337,39 @@ double parse_measurement_value(const MeasurementKind& kind, const std::string& t
   std::string unit = text.substr(i);
   unit.erase(std::remove(unit.begin(), unit.end(), ' '), unit.end());
   char* end = nullptr;
-  const double raw = number.empty() ? kNaN : std::strtod(number.c_str(), &end);
+  double raw = number.empty() ? kNaN : std::strtod(number.c_str(), &end);
   if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(raw)) {
     throw std::invalid_argument(
         what + " is not a number (write e.g. " +
         (kind.quantity == Quantity::kMass ? "85 or 85kg" : "1.80 or 180cm") + ")");
+  }
+  // Feet and inches together, as people say heights and as format_measurement writes them:
+  // "5ft11in", "5 ft 10.9 in", 5'11" or 5'11. The inches are folded into the feet.
+  if (kind.quantity == Quantity::kLength) {
+    for (const char* feet : {"ft", "'"}) {
+      const std::size_t n = std::string(feet).size();
+      if (unit.size() <= n || unit.compare(0, n, feet) != 0) continue;
+      std::string inches = unit.substr(n);
+      for (const char* mark : {"in", "\"", "''"}) {
+        const std::size_t m = std::string(mark).size();
+        if (inches.size() > m && inches.compare(inches.size() - m, m, mark) == 0) {
+          inches.erase(inches.size() - m);
+          break;
+        }
+      }
+      char* inches_end = nullptr;
+      const double in = std::strtod(inches.c_str(), &inches_end);
+      if (inches.empty() || inches_end != inches.c_str() + inches.size() || !std::isfinite(in) ||
+          in < 0.0 || in >= 12.0 || raw < 0.0) {
+        throw std::invalid_argument(what +
+                                    ": feet and inches are written like 5ft11in or 5'11\" "
+                                    "(inches from 0 to under 12)");
+      }
+      raw += in / 12.0;
+      unit = "ft";
+    }
+    if (unit == "'") unit = "ft";
+    if (unit == "\"" || unit == "''") unit = "in";
   }
   double factor = 1.0;
   bool unit_ok = unit.empty();

@@ -287,7 +287,17 @@ TEST_CASE("measurement names, formatting and typed values", "[measurements]") {
   CHECK(body::parse_measurement_value(height, "180cm") == Approx(1.80));
   CHECK(body::parse_measurement_value(height, "71 in") == Approx(1.8034));
   CHECK(body::parse_measurement_value(mass, "198lb") == Approx(89.8113).epsilon(1e-5));
-  for (const char* bad : {"nan", "inf", "", "abc", "1.8kg", "-1.7", "0", "1e9", "1.8.2"}) {
+  // Feet and inches, as typed and as the imperial display writes them (a round trip).
+  CHECK(body::parse_measurement_value(height, "5ft11in") == Approx(71 * 0.0254));
+  CHECK(body::parse_measurement_value(height, "5'11\"") == Approx(71 * 0.0254));
+  CHECK(body::parse_measurement_value(height, "5'11") == Approx(71 * 0.0254));
+  CHECK(body::parse_measurement_value(height, "6 ft") == Approx(72 * 0.0254));
+  CHECK(body::parse_measurement_value(height, "6'") == Approx(72 * 0.0254));
+  CHECK(body::parse_measurement_value(height, "70\"") == Approx(70 * 0.0254));
+  const std::string shown = body::format_measurement(Quantity::kLength, 1.8, Units::kImperial);
+  CHECK(body::parse_measurement_value(height, shown) == Approx(1.8).margin(0.002));
+  for (const char* bad : {"nan", "inf", "", "abc", "1.8kg", "-1.7", "0", "1e9", "1.8.2", "5ft13in",
+                          "5ft-1in", "5ftxin", "5'11kg"}) {
     CAPTURE(bad);
     CHECK_THROWS_AS(body::parse_measurement_value(height, bad), std::invalid_argument);
   }
