@@ -21,7 +21,7 @@ XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
 PID=$!
 for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
 WIN=$(xdotool search --sync --name '^Sequential Gallery$')
-  WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
+WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
 sleep 1
 centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
 click() { xdotool mousemove --sync --window "$WIN" $(centre "$1") click 1; sleep 1.2; }

@@ -417,10 +417,12 @@ void GalleryView::draw_grid(GalleryController& c, long frame) {
     dl->AddText(ImVec2(m.x - 100, m.y - 8), IM_COL32(235, 235, 240, 255),
                 "Computing the next plane...");
   }
-  if (hovered_ >= 0 && !c.animating() && !busy) draw_hover_tooltip(c);
+  if (hovered_ >= 0 && !c.animating() && !busy) {
+    draw_hover_tooltip(c, origin.x + total * 0.5f, origin.y + total * 0.5f);
+  }
 }
 
-void GalleryView::draw_hover_tooltip(const GalleryController& c) {
+void GalleryView::draw_hover_tooltip(const GalleryController& c, float centre_x, float centre_y) {
   const auto& points = c.displayed_cells();
   if (hovered_ >= static_cast<int>(points.size()) || !best_.prepared) return;
   const Eigen::VectorXd& x = points[static_cast<std::size_t>(hovered_)].x;
@@ -428,6 +430,14 @@ void GalleryView::draw_hover_tooltip(const GalleryController& c) {
       (hover_details_->x - x).cwiseAbs().maxCoeff() > 1e-12) {
     hover_details_ = c.space().prepare(x, true);
   }
+  // The tooltip opens away from the grid's edges, towards its centre, so it covers other cells
+  // and never the side panel's measurements table beside the grid (which it would repeat).
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const ImVec2 pivot(mouse.x > centre_x ? 1.0f : 0.0f, mouse.y > centre_y ? 1.0f : 0.0f);
+  const float offset = 18.0f;
+  ImGui::SetNextWindowPos(ImVec2(mouse.x + (pivot.x > 0 ? -offset : offset),
+                                 mouse.y + (pivot.y > 0 ? -offset : offset)),
+                          ImGuiCond_Always, pivot);
   ImGui::BeginTooltip();
   ImGui::Text("Cell %s", cell_label(hovered_, c.session().settings().grid_size).c_str());
   c.space().draw_inspector(*hover_details_, "this cell", best_.prepared.get(), "current best");

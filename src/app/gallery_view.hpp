@@ -93,7 +93,8 @@ class GalleryView {
   void draw_model_picker();
   void select_model_source(const std::string& source);
   void draw_file_browser();
-  void draw_hover_tooltip(const GalleryController& c);
+  // (centre_x, centre_y): the grid's centre on screen; the tooltip opens towards it.
+  void draw_hover_tooltip(const GalleryController& c, float centre_x, float centre_y);
   void request_export(GalleryController& c, const std::filesystem::path& path);
   void open_save_dialog(GalleryController& c);
   void open_model_dialog();
