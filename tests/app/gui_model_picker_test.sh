@@ -8,31 +8,10 @@
 # Usage: gui_model_picker_test.sh /path/to/sequential-gallery
 set -euo pipefail
 APP=$(realpath "$1")
-T=$(mktemp -d)
-APP_PID=
-cleanup() {
-  if [[ -n "$APP_PID" ]]; then kill "$APP_PID" 2>/dev/null || true; fi
-  rm -rf "$T"
-}
-trap cleanup EXIT
-fail() {
-  echo "FAIL: $*"
-  echo "--- app log"
-  grep -v '^\[layout\]' "$T/log" 2>/dev/null || true
-  exit 1
-}
+source "$(dirname "$0")/gui_common.sh"
 PY=/usr/bin/python3
 json_field() {  # json_field FILE EXPR: a Python expression over the JSON `s`
   $PY -c "import json; s=json.load(open('$1')); print($2)" 2>/dev/null || echo "?"
-}
-wait_for() {  # wait_for SECONDS COMMAND...: poll until the command succeeds
-  local limit=$1
-  shift
-  for ((i = 0; i < limit * 10; ++i)); do
-    if "$@"; then return 0; fi
-    sleep 0.1
-  done
-  return 1
 }
 is() { [[ "$(json_field "$1" "$2")" == "$3" ]]; }
 launch() {  # launch SESSION_NAME [options...]
@@ -42,11 +21,7 @@ launch() {  # launch SESSION_NAME [options...]
   (cd "$T" && exec "$APP" gallery --session "$T/$session" --window 1600x1000 --file-dialog builtin \
     --zoom-seconds 0.3 --report-layout "$@" >>"$T/log" 2>&1) &
   APP_PID=$!
-  wait_for 30 grep -qs '^\[layout\] cell 9 ' "$T/log" || fail "no window / grid within 30 s"
-  WIN=$(xdotool search --sync --name '^Sequential Gallery$')
-  WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
-  [[ -n "$WIN" ]] || fail "window not found"
-  sleep 1
+  wait_for_window
 }
 stop() {
   kill -9 "$APP_PID"

@@ -5,19 +5,7 @@
 # Usage: gui_session_test.sh /path/to/sequential-gallery
 set -euo pipefail
 APP=$1
-T=$(mktemp -d)
-APP_PID=
-cleanup() {
-  if [[ -n "$APP_PID" ]]; then kill "$APP_PID" 2>/dev/null || true; fi
-  rm -rf "$T"
-}
-trap cleanup EXIT
-fail() {
-  echo "FAIL: $*"
-  echo "--- app log"
-  cat "$T/log" 2>/dev/null || true
-  exit 1
-}
+source "$(dirname "$0")/gui_common.sh"
 MODEL_ARGS=()
 if [[ -n "${SG_GUI_TEST_MODEL:-}" ]]; then MODEL_ARGS=(--model "$SG_GUI_TEST_MODEL"); fi
 PY=/usr/bin/python3
@@ -26,24 +14,11 @@ PY=/usr/bin/python3
 session_field() {
   $PY -c "import json,sys; s=json.load(open('$T/session.json')); print($1)" 2>/dev/null || echo "?"
 }
-wait_for() {  # wait_for SECONDS COMMAND...: poll until the command succeeds
-  local limit=$1
-  shift
-  for ((i = 0; i < limit * 10; ++i)); do
-    if "$@"; then return 0; fi
-    sleep 0.1
-  done
-  return 1
-}
 launch() {
   "$APP" gallery "${MODEL_ARGS[@]}" --session "$T/session.json" --save-path "$T/chosen.glb" \
     --window 1400x900 --zoom-seconds 0.4 --report-layout "$@" >>"$T/log" 2>&1 &
   APP_PID=$!
-  wait_for 30 grep -qs '^\[layout\] cell 9 ' "$T/log" || fail "no window / grid within 30 s"
-  WIN=$(xdotool search --sync --name '^Sequential Gallery$')
-  WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
-  [[ -n "$WIN" ]] || fail "window not found"
-  sleep 1  # let GLFW/ImGui take focus
+  wait_for_window
 }
 cell_centre() {  # cell_centre N -> "X Y" of grid cell N (1..9) from the app's layout report
   awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' \
