@@ -271,9 +271,28 @@ namespace {
 constexpr double kMetresPerInch = 0.0254;
 constexpr double kKgPerPound = 0.45359237;
 
-std::string printed(const char* format, double a) {
+// The unit a quantity is shown in: the factor from SI and the suffix.
+struct DisplayUnit {
+  double per_si;
+  const char* suffix;
+};
+
+DisplayUnit display_unit(Quantity quantity, Units units) {
+  const bool metric = units == Units::kMetric;
+  switch (quantity) {
+    case Quantity::kLength:
+      return metric ? DisplayUnit{100.0, " cm"} : DisplayUnit{1.0 / kMetresPerInch, " in"};
+    case Quantity::kMass:
+      return metric ? DisplayUnit{1.0, " kg"} : DisplayUnit{1.0 / kKgPerPound, " lb"};
+    case Quantity::kBmi:
+      break;
+  }
+  return {1.0, ""};  // BMI has one unit (kg/m^2), shown bare as people quote it
+}
+
+std::string printed(const char* format, int decimals, double a, const char* suffix) {
   char text[64];
-  std::snprintf(text, sizeof text, format, a);
+  std::snprintf(text, sizeof text, format, decimals, a, suffix);
   return text;
 }
 
@@ -281,42 +300,26 @@ std::string printed(const char* format, double a) {
 
 std::string format_measurement(Quantity quantity, double value, Units units) {
   if (!std::isfinite(value)) return "n/a";
-  switch (quantity) {
-    case Quantity::kLength:
-      if (units == Units::kMetric) return printed("%.1f cm", value * 100.0);
-      {
-        const double inches = value / kMetresPerInch;
-        // Statures read in feet and inches; girths and breadths in inches.
-        if (inches >= 48.0) {
-          const int feet = static_cast<int>(std::floor(inches / 12.0));
-          char text[64];
-          std::snprintf(text, sizeof text, "%d ft %.1f in", feet, inches - 12.0 * feet);
-          return text;
-        }
-        return printed("%.1f in", inches);
-      }
-    case Quantity::kMass:
-      return units == Units::kMetric ? printed("%.1f kg", value)
-                                     : printed("%.1f lb", value / kKgPerPound);
-    case Quantity::kBmi:
-      return printed("%.1f", value);
+  const DisplayUnit unit = display_unit(quantity, units);
+  const double shown = value * unit.per_si;
+  // Statures read in feet and inches; girths and breadths in inches. Rounded to a tenth of an
+  // inch before splitting, so 71.96 in reads "6 ft 0.0 in", never "5 ft 12.0 in".
+  if (quantity == Quantity::kLength && units == Units::kImperial && shown >= 48.0) {
+    const double tenths = std::round(shown * 10.0) / 10.0;
+    const int feet = static_cast<int>(std::floor(tenths / 12.0));
+    char text[64];
+    std::snprintf(text, sizeof text, "%d ft %.1f in", feet, tenths - 12.0 * feet);
+    return text;
   }
-  return "n/a";
+  return printed("%.*f%s", 1, shown, unit.suffix);
 }
 
 std::string format_difference(Quantity quantity, double difference, Units units) {
   if (!std::isfinite(difference)) return "n/a";
-  switch (quantity) {
-    case Quantity::kLength:
-      return units == Units::kMetric ? printed("%+.1f cm", difference * 100.0)
-                                     : printed("%+.2f in", difference / kMetresPerInch);
-    case Quantity::kMass:
-      return units == Units::kMetric ? printed("%+.1f kg", difference)
-                                     : printed("%+.1f lb", difference / kKgPerPound);
-    case Quantity::kBmi:
-      return printed("%+.1f", difference);
-  }
-  return "n/a";
+  const DisplayUnit unit = display_unit(quantity, units);
+  // Inch differences get two decimals: a tenth of an inch is 2.5 mm, too coarse for a hold.
+  const int decimals = quantity == Quantity::kLength && units == Units::kImperial ? 2 : 1;
+  return printed("%+.*f%s", decimals, difference * unit.per_si, unit.suffix);
 }
 
 double parse_measurement_value(const MeasurementKind& kind, const std::string& text) {

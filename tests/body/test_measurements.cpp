@@ -277,10 +277,18 @@ TEST_CASE("measurement names, formatting and typed values", "[measurements]") {
   using body::Units;
   CHECK(body::format_measurement(Quantity::kLength, 1.8, Units::kMetric) == "180.0 cm");
   CHECK(body::format_measurement(Quantity::kLength, 1.8, Units::kImperial) == "5 ft 10.9 in");
+  // Rounding happens before feet and inches are split: 71.97 in is 6 ft 0.0 in.
+  CHECK(body::format_measurement(Quantity::kLength, 71.97 * 0.0254, Units::kImperial) ==
+        "6 ft 0.0 in");
   CHECK(body::format_measurement(Quantity::kLength, 0.9144, Units::kImperial) == "36.0 in");
   CHECK(body::format_measurement(Quantity::kMass, 90.0, Units::kImperial) == "198.4 lb");
   CHECK(body::format_measurement(Quantity::kMass, std::nan(""), Units::kMetric) == "n/a");
   CHECK(body::format_difference(Quantity::kLength, -0.0254, Units::kImperial) == "-1.00 in");
+  CHECK(body::format_difference(Quantity::kLength, 0.012, Units::kMetric) == "+1.2 cm");
+  CHECK(body::format_difference(Quantity::kMass, 1.26, Units::kMetric) == "+1.3 kg");
+  CHECK(body::format_difference(Quantity::kMass, -0.4536, Units::kImperial) == "-1.0 lb");
+  CHECK(body::format_measurement(Quantity::kBmi, 24.08, Units::kImperial) == "24.1");
+  CHECK(body::format_difference(Quantity::kBmi, 0.5, Units::kMetric) == "+0.5");
   const auto& height = *body::find_measurement("height");
   const auto& mass = *body::find_measurement("mass");
   CHECK(body::parse_measurement_value(height, "1.80") == Approx(1.80));
