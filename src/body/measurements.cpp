@@ -50,18 +50,28 @@ double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double ax
 
 namespace {
 
-// Six times the signed enclosed volume: positive when the faces turn counter-clockwise seen
-// from outside.
-double signed_six_volume(const Vertices& vertices, const Faces& faces) {
-  double six_volume = 0.0;
+// Calls visit(a, b, c) with each triangle's corners in double precision; faces that name a
+// vertex beyond the mesh are skipped (a loaded model's faces are validated, this keeps a
+// measurement from reading out of bounds on a mismatched mesh all the same).
+template <class Visit>
+void for_each_triangle(const Vertices& vertices, const Faces& faces, Visit&& visit) {
   const Eigen::Index V = vertices.rows();
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     if (faces(f, 0) >= V || faces(f, 1) >= V || faces(f, 2) >= V) continue;
     const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
     const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
     const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
-    six_volume += a.dot(b.cross(c));
+    visit(a, b, c);
   }
+}
+
+// Six times the signed enclosed volume: positive when the faces turn counter-clockwise seen
+// from outside.
+double signed_six_volume(const Vertices& vertices, const Faces& faces) {
+  double six_volume = 0.0;
+  for_each_triangle(vertices, faces,
+                    [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& c) { six_volume += a.dot(b.cross(c)); });
   return six_volume;
 }
 
@@ -113,25 +123,22 @@ double arm_length(const Model& model, const BodyMesh& mesh) {
 // below `ceiling` (absolute y); NaN if none.
 double crotch_y(const Vertices& vertices, const Faces& faces, double x, double z, double ceiling) {
   double best = -std::numeric_limits<double>::infinity();
-  const Eigen::Index V = vertices.rows();
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    if (faces(f, 0) >= V || faces(f, 1) >= V || faces(f, 2) >= V) continue;
-    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
-    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
-    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
-    // Barycentric coordinates of (x, z) in the triangle's projection on the floor.
-    const double area = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
-    if (std::abs(area) < 1e-14) continue;
-    const double wb = ((x - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (z - a.z())) / area;
-    const double wc = ((b.x() - a.x()) * (z - a.z()) - (x - a.x()) * (b.z() - a.z())) / area;
-    const double wa = 1.0 - wb - wc;
-    if (wa < 0.0 || wb < 0.0 || wc < 0.0) continue;
-    // The normal (b - a) x (c - a) has y = -area: it faces down when area > 0 (faces turning
-    // counter-clockwise seen from outside; measure() flips a mesh wound the other way).
-    if (!(area > 0.0)) continue;
-    const double y = wa * a.y() + wb * b.y() + wc * c.y();
-    if (y < ceiling && y > best) best = y;
-  }
+  for_each_triangle(
+      vertices, faces,
+      [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+        // Barycentric coordinates of (x, z) in the triangle's projection on the floor.
+        const double area = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+        if (std::abs(area) < 1e-14) return;
+        const double wb = ((x - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (z - a.z())) / area;
+        const double wc = ((b.x() - a.x()) * (z - a.z()) - (x - a.x()) * (b.z() - a.z())) / area;
+        const double wa = 1.0 - wb - wc;
+        if (wa < 0.0 || wb < 0.0 || wc < 0.0) return;
+        // The normal (b - a) x (c - a) has y = -area: it faces down when area > 0 (faces turning
+        // counter-clockwise seen from outside; measure() flips a mesh wound the other way).
+        if (!(area > 0.0)) return;
+        const double y = wa * a.y() + wb * b.y() + wc * c.y();
+        if (y < ceiling && y > best) best = y;
+      });
   return std::isfinite(best) ? best : kNaN;
 }
 
