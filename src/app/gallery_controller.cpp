@@ -344,6 +344,8 @@ void GalleryController::use_point(const Eigen::VectorXd& x) {
   Submission submission;
   submission.chosen = x;
   submission.set_directly = true;
+  // The clicks already made on this plane's zoom levels stay preference data.
+  submission.extra_comparisons = session_->level_comparisons();
   if ((x - previous_best).norm() > 1e-9) submission.extra_comparisons.push_back({x, previous_best});
   redo_.clear();
   ++generation_;

@@ -273,11 +273,9 @@ std::string Session::cell_note(const sps::GridPoint& cell) {
   return "";
 }
 
-Submission Session::submission() const {
-  if (!submission_pending()) throw std::logic_error("no finished plane to submit");
+std::vector<std::vector<Eigen::VectorXd>> Session::level_comparisons() const {
   const int n = settings_.grid_size;
-  Submission s;
-  s.chosen = current_best();
+  std::vector<std::vector<Eigen::VectorXd>> comparisons;
   for (std::size_t level = 0; level < path_.size(); ++level) {
     const auto points = cells_at(views_[level]);
     const auto& clicked = path_[level];
@@ -299,8 +297,16 @@ Submission Session::submission() const {
       }
       comparison.push_back(p.x);
     }
-    if (comparison.size() > 1) s.extra_comparisons.push_back(std::move(comparison));
+    if (comparison.size() > 1) comparisons.push_back(std::move(comparison));
   }
+  return comparisons;
+}
+
+Submission Session::submission() const {
+  if (!submission_pending()) throw std::logic_error("no finished plane to submit");
+  Submission s;
+  s.chosen = current_best();
+  s.extra_comparisons = level_comparisons();
   if (held_) {
     // The optimizer compares the choice with the plane's representatives (c, c+-u, c+-v...):
     // with holds, the held bodies shown there, never the unprojected plane's. Taken from the
@@ -339,7 +345,7 @@ bool Session::undo_click() {
   }
   if (history_.empty() || !search_.undo()) return false;
   path_ = history_.back().path;
-  if (!path_.empty()) path_.pop_back();  // a point set by sliders has no clicks
+  if (!history_.back().set_by_sliders && !path_.empty()) path_.pop_back();
   history_.pop_back();
   update_views();
   return true;
@@ -349,7 +355,7 @@ void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch update
   if (chosen.size() != settings_.components) {
     throw std::invalid_argument("adopt_point: the point has the wrong dimension");
   }
-  history_.push_back({chosen, {}});
+  history_.push_back({chosen, path_, true});
   search_ = std::move(updated_search);
   path_.clear();
   update_views();
@@ -399,7 +405,9 @@ std::string Session::to_json() const {
   j["start_point"] = vector_json(start_point_);
   json history = json::array();
   for (const auto& h : history_) {
-    history.push_back({{"chosen", vector_json(h.chosen)}, {"path", path_json(h.path)}});
+    json entry{{"chosen", vector_json(h.chosen)}, {"path", path_json(h.path)}};
+    if (h.set_by_sliders) entry["set_by_sliders"] = true;
+    history.push_back(std::move(entry));
   }
   j["history"] = history;
   if (!saved_holds_.empty()) {
@@ -459,9 +467,15 @@ Session Session::from_json(const std::string& text) {
       HistoryEntry entry;
       entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
       entry.path = path_from(h.at("path"), n, "history path");
+      if (h.contains("set_by_sliders")) {
+        if (!h.at("set_by_sliders").is_boolean()) {
+          throw std::runtime_error("history set_by_sliders must be true or false");
+        }
+        entry.set_by_sliders = h.at("set_by_sliders").get<bool>();
+      }
       // Undo reopens a finished plane with its clicks minus the last: each finished plane has
-      // one click per zoom level, fewer when it ended early (no visible change left), or none
-      // when the point was set with the expert sliders (adopt_point).
+      // one click per zoom level, fewer when it ended early (no visible change left), or those
+      // made before the point was set with the expert sliders (adopt_point).
       if (static_cast<int>(entry.path.size()) > settings.zoom_levels) {
         throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
                                  " clicks, expected at most " +

@@ -31,6 +31,9 @@ struct SessionSettings {
 struct HistoryEntry {
   Eigen::VectorXd chosen;           // x_chosen, in [0,1]^n
   std::vector<sps::GridCell> path;  // the clicks on that plane
+  // Chosen with the expert sliders ("Use this"): `path` holds the clicks made on the plane
+  // before, all of which undo gives back (a finished plane's last click is what finished it).
+  bool set_by_sliders = false;
 };
 
 // What a click did.
@@ -140,6 +143,10 @@ class Session {
   }
   // The choice and the intermediate levels as extra comparisons {clicked, other cells...}.
   Submission submission() const;
+  // The clicks made so far on this plane's zoom levels, each as {clicked, other cells...}:
+  // what submission() passes on, also when the plane is left unfinished (the expert sliders'
+  // "Use this"), so no click the user made is lost.
+  std::vector<std::vector<Eigen::VectorXd>> level_comparisons() const;
   // Installs the search state computed from submission() (on a worker) and starts the next plane.
   void finish_plane(sps::PlaneSearch updated_search);
   // Installs the search state computed from a point the user set directly (expert sliders,

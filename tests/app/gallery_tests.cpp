@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -188,6 +189,49 @@ TEST_CASE("expert sliders: Use this makes the point the current best, preferred 
   c.begin_frame(10.1);
   CHECK(c.session().planes_done() == 0);
   CHECK(c.session().clicks_on_plane() == 0);
+}
+
+TEST_CASE("expert sliders keep the clicks already made on the plane", "[gallery]") {
+  TempDir dir;
+  // Use this on a fresh plane, and on one with two zoom clicks made: the clicks become
+  // preference data too, and undo gives all of them back.
+  const auto use_point_after = [&](int clicks, const char* file) {
+    auto c =
+        std::make_unique<GalleryController>(options(dir.path / file), &spaces::open_space, 0.0);
+    double t = 0.0;
+    c->begin_frame(t);
+    for (int k = 0; k < clicks; ++k) {
+      c->queue(intent::ClickCell{k, 1});
+      c->begin_frame(t += 10.0);
+      c->begin_frame(t += 10.0);  // past the zoom animation
+    }
+    REQUIRE(c->session().clicks_on_plane() == clicks);
+    Eigen::VectorXd x = c->session().current_best();
+    x[0] = x[0] > 0.5 ? 0.1 : 0.9;
+    c->queue(intent::UsePoint{x});
+    c->begin_frame(t += 1.0);
+    c->wait_for_optimizer(t += 1.0);
+    REQUIRE(c->session().planes_done() == 1);
+    return c;
+  };
+  const auto fresh = use_point_after(0, "fresh.json");
+  const auto clicked = use_point_after(2, "clicked.json");
+  const auto count = [](const GalleryController& c) {
+    return c.session().search().data().preferences().size();
+  };
+  CHECK(count(*clicked) >= count(*fresh) + 2);
+  CHECK(clicked->session().history().back().set_by_sliders);
+  CHECK(clicked->session().history().back().path.size() == 2);
+  // The flag survives the session file.
+  clicked->save_now();
+  const auto reloaded = app::load_session(dir.path / "clicked.json");
+  REQUIRE(reloaded.session);
+  CHECK(reloaded.session->history().back().set_by_sliders);
+  // Undo reopens the plane with both clicks, not one fewer as after a finished plane.
+  clicked->queue(intent::UndoClick{});
+  clicked->begin_frame(100.0);
+  CHECK(clicked->session().planes_done() == 0);
+  CHECK(clicked->session().clicks_on_plane() == 2);
 }
 
 TEST_CASE("a resumable session waits for the answer, other intents are ignored", "[gallery]") {
