@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace default_model {
 
@@ -99,6 +100,23 @@ Capsule ellipsoid(const Vec3& centre, const Vec3& axis, const Vec3& hint, double
   Capsule c{centre, centre + 1e-9 * axis.normalized(), hint, ru, rv, ru, rv, ra, ra, {}, {}, {}, 0};
   c.finish();
   return c;
+}
+
+// A sphere holding the given primitives (their axes plus their largest radius or cap).
+std::pair<Vec3, double> bounding_sphere(const std::vector<std::pair<Capsule, double>>& parts,
+                                        std::size_t begin) {
+  Vec3 c = Vec3::Zero();
+  int n = 0;
+  for (std::size_t i = begin; i < parts.size(); ++i, n += 2)
+    c += parts[i].first.a + parts[i].first.b;
+  c /= std::max(n, 1);
+  double r = 0;
+  for (std::size_t i = begin; i < parts.size(); ++i) {
+    const Capsule& q = parts[i].first;
+    const double extent = std::max({q.ru_a, q.rv_a, q.ru_b, q.rv_b, q.cap_a, q.cap_b});
+    r = std::max({r, (q.a - c).norm() + extent, (q.b - c).norm() + extent});
+  }
+  return {c, r};
 }
 
 Vec3 mirror(const Vec3& p) {
@@ -245,6 +263,8 @@ Mannequin::Mannequin() {
         {ellipsoid(Vec3(sx * 0.076, 1.588, -0.005), Y, X, 0.03, 0.012, 0.02), 0.012});
   }
 
+  std::tie(head_centre_, head_radius_) = bounding_sphere(head_parts_, 0);
+
   for (int s = 0; s < 2; ++s) {
     auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
     const int o = s;
@@ -265,7 +285,16 @@ Mannequin::Mannequin() {
          0.03});
     const Vec3 zf = M(Vec3(0, 0, 1));
     // Four fingers, fanned slightly so that they part beyond the knuckles: index (on the
-    // thumb's side, +w) to little finger.
+    // thumb's side, +w) to little finger. Each has three phalanges curling a little towards the
+    // palm (-n), knuckles that stand out on the back (+n) at the base and middle joints, and a
+    // nail on the last phalanx.
+    side.hand_begin = side.arm.size();
+    auto nail = [&](const Vec3& tip, const Vec3& dir, const Vec3& back, double len, double width,
+                    double thickness) {
+      const Vec3 c = tip - 0.45 * len * dir + 0.9 * thickness * back;
+      side.arm.push_back({ellipsoid(c, dir, back, 0.42 * len, 0.0018, width), 0.0008});
+      fine_spots_.push_back({c, 0.009});
+    };
     {
       const Vec3 w = (zf - df * df.dot(zf) - n * n.dot(zf)).normalized();
       const double offset[4] = {0.0285, 0.0095, -0.0095, -0.0275};
@@ -274,16 +303,47 @@ Mannequin::Mannequin() {
       const double radius[4] = {0.0085, 0.0088, 0.0083, 0.0074};
       for (int f = 0; f < 4; ++f) {
         const Vec3 base = wr + 0.078 * df + offset[f] * w;
-        const Vec3 dir = (std::cos(angle[f]) * df + std::sin(angle[f]) * w).normalized();
-        side.arm.push_back({capsule(base, base + length[f] * dir, n, 0.0078, radius[f], 0.0062,
-                                    0.8 * radius[f], 0.008, 0.007),
-                            0.008});
+        Vec3 dir = (std::cos(angle[f]) * df + std::sin(angle[f]) * w).normalized();
+        const double r = radius[f];
+        // Knuckle at the back of the hand.
+        side.arm.push_back(
+            {ellipsoid(base - 0.006 * dir + 0.008 * n, dir, n, 0.008, 0.0065, 0.85 * r), 0.006});
+        const double part[3] = {0.45, 0.31, 0.24};
+        const double thick[4] = {0.0079, 0.0071, 0.0064, 0.0058};
+        const double wide[4] = {1.0, 0.9, 0.82, 0.74};
+        Vec3 a = base;
+        for (int ph = 0; ph < 3; ++ph) {
+          const Vec3 b = a + part[ph] * length[f] * dir;
+          side.arm.push_back({capsule(a, b, n, thick[ph], wide[ph] * r, 0.97 * thick[ph + 1],
+                                      0.97 * wide[ph + 1] * r, ph == 0 ? 0.008 : 0.5 * thick[ph],
+                                      ph == 2 ? 0.8 * thick[3] : 0.5 * thick[ph + 1]),
+                              0.0025});
+          if (ph < 2)  // the joint: a little wider, and proud on the back
+            side.arm.push_back({ellipsoid(b + 0.0016 * n, dir, n, 0.0055, thick[ph + 1] * 0.98,
+                                          wide[ph + 1] * r * 1.0),
+                                0.003});
+          else
+            nail(b + 0.8 * thick[3] * dir, dir, n, part[2] * length[f], 0.62 * r, thick[3]);
+          a = b;
+          // Curl: each phalanx turns 8 degrees further towards the palm.
+          dir = (std::cos(0.14) * dir - std::sin(0.14) * n).normalized();
+        }
       }
     }
-    side.arm.push_back(
-        {capsule(wr + 0.03 * df + 0.03 * zf - 0.004 * n, wr + 0.08 * df + 0.07 * zf - 0.01 * n, n,
-                 0.012, 0.012, 0.009, 0.009, 0.01, 0.009),
-         0.012});
+    {
+      // Thumb: two segments with a knuckle between them and a nail.
+      const Vec3 t0 = wr + 0.03 * df + 0.03 * zf - 0.004 * n;
+      const Vec3 t1 = wr + 0.058 * df + 0.052 * zf - 0.007 * n;
+      const Vec3 t2 = wr + 0.08 * df + 0.07 * zf - 0.01 * n;
+      const Vec3 dir = (t2 - t1).normalized();
+      const Vec3 back = (n - dir * dir.dot(n)).normalized();
+      side.arm.push_back({capsule(t0, t1, n, 0.012, 0.012, 0.0098, 0.0105, 0.01, 0.007), 0.012});
+      side.arm.push_back({ellipsoid(t1 + 0.0012 * back, dir, n, 0.006, 0.0102, 0.0108), 0.003});
+      side.arm.push_back(
+          {capsule(t1, t2, n, 0.0096, 0.0102, 0.0085, 0.0088, 0.007, 0.0085), 0.003});
+      nail(t2 + 0.006 * dir, dir, back, 0.03, 0.0068, 0.0085);
+    }
+    std::tie(side.hand_centre, side.hand_radius) = bounding_sphere(side.arm, side.hand_begin);
     (void)M;
     // Leg: thigh, calf with muscle, ankle, foot.
     const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
@@ -359,7 +419,13 @@ double Mannequin::torso_loft(const Vec3& p) const {
 
 double Mannequin::arm_field(const Side& s, const Vec3& p) const {
   double d = 1e9;
-  for (const auto& [c, k] : s.arm) d = smooth_min(d, c.distance(p), k);
+  for (std::size_t i = 0; i < s.hand_begin; ++i)
+    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
+  // The fingers (most of the primitives) only where they can change the result: farther from
+  // their sphere than d plus any blend radius they cannot.
+  if ((p - s.hand_centre).norm() - s.hand_radius > d + 0.02) return d;
+  for (std::size_t i = s.hand_begin; i < s.arm.size(); ++i)
+    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
   return d;
 }
 
@@ -396,11 +462,14 @@ double Mannequin::trunk_field(const Vec3& p) const {
 
 double Mannequin::field(const Vec3& p) const {
   double d = trunk_and_legs(p);
-  double head = 1e9;
-  for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
-  for (const auto& [c, k] : head_cuts_) head = -smooth_min(-head, c.distance(p), k);
-  for (const auto& [c, k] : head_details_) head = smooth_min(head, c.distance(p), k);
-  d = smooth_min(d, head, 0.03);
+  // The head only where it can change the result (it blends in with radius 0.03).
+  if ((p - head_centre_).norm() - head_radius_ <= d + 0.04) {
+    double head = 1e9;
+    for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
+    for (const auto& [c, k] : head_cuts_) head = -smooth_min(-head, c.distance(p), k);
+    for (const auto& [c, k] : head_details_) head = smooth_min(head, c.distance(p), k);
+    d = smooth_min(d, head, 0.03);
+  }
   for (const Side& s : sides_) {
     const double k = 0.045 * (1.0 - smoothstep(0.10, 0.22, (p - s.shoulder).norm()));
     d = smooth_min(d, arm_field(s, p), k);
@@ -459,6 +528,9 @@ double Mannequin::target_edge(const Vec3& p) const {
         L, 0.007 + 0.0105 * smoothstep(0.09, 0.14, (p - skeleton_.joints[kLeftHand + s]).norm()));
     (void)w;
   }
+  // Nails.
+  for (const auto& [c, r] : fine_spots_)
+    L = std::min(L, 0.0036 + 0.0139 * smoothstep(r, 1.6 * r, (p - c).norm()));
   // Head and face.
   L = std::min(L, 0.011 + 0.0065 * smoothstep(0.10, 0.16, (p - Vec3(0, 1.59, 0.02)).norm()));
   // The face (brow, eyes, nose, lips, chin) finer still, and eyes and mouth finest.
@@ -474,7 +546,7 @@ double Mannequin::target_edge(const Vec3& p) const {
   if (p.y() < 0.12) {
     L = std::min(L, 0.012 + 0.0055 * smoothstep(0.06, 0.12, p.y()));
     const Vec3 toes(std::abs(p.x()) - skeleton_.joints[kLeftAnkle].x(), 0.6 * p.y(), p.z() - 0.155);
-    L = std::min(L, 0.0045 + 0.0075 * smoothstep(0.035, 0.06, toes.norm()));
+    L = std::min(L, 0.005 + 0.007 * smoothstep(0.035, 0.06, toes.norm()));
   }
   return L;
 }

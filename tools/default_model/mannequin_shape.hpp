@@ -103,6 +103,9 @@ class Mannequin {
  private:
   struct Side {
     std::vector<std::pair<Capsule, double>> arm;  // primitive, blend radius into the chain
+    std::size_t hand_begin = 0;                   // arm[hand_begin..] make the fingers
+    Vec3 hand_centre = Vec3::Zero();              // and lie within this sphere
+    double hand_radius = 0;
     std::vector<std::pair<Capsule, double>> leg;
     std::vector<Capsule> toes;                         // joined to the foot, grooved between
     std::vector<std::pair<Capsule, double>> leg_cuts;  // carved out of the foot (the arch)
@@ -122,7 +125,10 @@ class Mannequin {
   std::vector<std::pair<Capsule, double>> head_parts_;
   std::vector<std::pair<Capsule, double>> head_cuts_;     // carved out of the head (eye sockets)
   std::vector<std::pair<Capsule, double>> head_details_;  // added after the cuts (eyes)
-  std::array<Side, 2> sides_;                             // 0 = left (+x), 1 = right
+  Vec3 head_centre_ = Vec3::Zero();  // every head primitive lies within this sphere
+  double head_radius_ = 0;
+  std::vector<std::pair<Vec3, double>> fine_spots_;  // finest mesh within these radii (nails)
+  std::array<Side, 2> sides_;                        // 0 = left (+x), 1 = right
 };
 
 double smooth_min(double a, double b, double k);
