@@ -254,9 +254,9 @@ Mannequin::Mannequin() {
     const Vec3 eye(sx * 0.031, 1.5985, 0.0845);
     head_details_.push_back({ellipsoid(eye, Y, X, 0.0122, 0.0122, 0.0122), 0.003});
     head_details_.push_back(
-        {ellipsoid(eye + Vec3(0, 0.0072, 0.0004), Y, X, 0.0098, 0.0125, 0.0128), 0.004});
+        {ellipsoid(eye + Vec3(0, 0.0088, 0.0002), Y, X, 0.0098, 0.0126, 0.0128), 0.004});
     head_details_.push_back(
-        {ellipsoid(eye + Vec3(0, -0.0074, 0.0002), Y, X, 0.0076, 0.0123, 0.0125), 0.004});
+        {ellipsoid(eye + Vec3(0, -0.0086, 0.0), Y, X, 0.0076, 0.0124, 0.0125), 0.004});
   }
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(

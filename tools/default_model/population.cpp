@@ -340,7 +340,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // Cross sections. The mannequin was modelled slimmer than the survey's reference person (its
   // tape-measure waist read 75.5 cm for a survey mean of 89.9 cm, its volume gave 64 kg for
   // 77 kg): these factors calibrate it, so that the mean bodies' mass matches the survey.
-  constexpr double kPelvisCal = 1.09, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.05;
+  constexpr double kPelvisCal = 1.09, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.08;
   const double pelvis_w = kPelvisCal * r(k_hip_breadth);
   const double pelvis_d = kPelvisCal * r(k_buttock_depth);
   const double waist_w = kWaistCal * r(k_waist_breadth), waist_d = kWaistCal * r(k_waist_depth);
