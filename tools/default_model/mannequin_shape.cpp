@@ -347,8 +347,11 @@ Mannequin::Mannequin() {
     (void)M;
     // Leg: thigh, calf with muscle, ankle, foot.
     const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
+    // The thigh's axis starts well above the hip joint, inside the trunk, so that its rounded
+    // top end lies above the morph (kMorphTop) and the thigh is a plain cone wherever the trunk
+    // morphs into it (a rounded end there left a corner round the hips).
     side.leg.push_back(
-        {capsule(hp + Vec3(0, 0.03, 0), kn, X, 0.084, 0.082, 0.047, 0.052, 0.05, 0.045), 0.0});
+        {capsule(hp + Vec3(0, 0.10, 0), kn, X, 0.090, 0.087, 0.047, 0.052, 0.05, 0.045), 0.0});
     // The shank starts at the knee with the thigh's radii there, so the two meet without the
     // ring that an overlap of their rounded ends made.
     side.leg.push_back({capsule(kn, an, X, 0.047, 0.052, 0.029, 0.033, 0.045, 0.03), 0.02});
@@ -484,7 +487,10 @@ double Mannequin::trunk_and_legs(const Vec3& p) const {
   // pair of shorts where the thighs run alongside the hips and a step where they leave them.)
   // At the back the buttocks stay the trunk's down to their fold, so the morph is shorter.
   const double top = kMorphTop - 0.11 * smoothstep(0.0, -0.08, p.z());
-  const double w = smoothstep(kMorphBottom, top, p.y());
+  // C2 weight (6t^5 - 15t^4 + 10t^3): with a C1 one the surface's curvature jumps at the ends
+  // of the morph, a line that the soft-tissue fields of heavy bodies turned into a band.
+  const double t = std::clamp((p.y() - kMorphBottom) / (top - kMorphBottom), 0.0, 1.0);
+  const double w = t * t * t * (t * (6 * t - 15) + 10);
   if (w >= 1.0) return trunk_field(p);
   const Dist l0 = leg_field(sides_[0], p), l1 = leg_field(sides_[1], p);
   const double legs = std::min(l0.d, l1.d);
