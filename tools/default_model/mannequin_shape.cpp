@@ -318,7 +318,7 @@ Mannequin::Mannequin() {
                                       0.97 * wide[ph + 1] * r, ph == 0 ? 0.008 : 0.5 * thick[ph],
                                       ph == 2 ? 0.8 * thick[3] : 0.5 * thick[ph + 1]),
                               0.0025});
-          if (ph < 2)  // the joint: a little wider, and proud on the back
+          if (ph < 2)  // the joint: as wide as the phalanx there, and proud on the back
             side.arm.push_back({ellipsoid(b + 0.0016 * n, dir, n, 0.0055, thick[ph + 1] * 0.98,
                                           wide[ph + 1] * r * 1.0),
                                 0.003});
