@@ -252,6 +252,58 @@ void collapse_short_edges(TriMesh& mesh, const RemeshOptions& opt) {
   compact(mesh, face_alive);
 }
 
+// Splits every edge longer than 1.5 target lengths at its midpoint, projected onto the surface,
+// until none is left (a few rounds): the marching grid is as coarse as the body needs, and
+// this refines it where the target asks for finer detail (face, toes, fingers). Each split
+// keeps the mesh a consistently wound 2-manifold (the two faces of an edge become four).
+void split_long_edges(TriMesh& mesh, const RemeshOptions& opt) {
+  auto& P = mesh.vertices;
+  auto& F = mesh.faces;
+  for (int round = 0; round < 8; ++round) {
+    const std::uint64_t V = P.size();
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edge_faces;
+    edge_faces.reserve(F.size() * 2);
+    for (int f = 0; f < static_cast<int>(F.size()); ++f)
+      for (int e = 0; e < 3; ++e) {
+        int a = F[f][e], b = F[f][(e + 1) % 3];
+        const bool forward = a < b;
+        if (!forward) std::swap(a, b);
+        edge_faces[static_cast<std::uint64_t>(a) * V + b][forward ? 0 : 1] = f;
+      }
+    const std::size_t faces_before = F.size();
+    std::vector<char> touched(faces_before, 0);
+    int splits = 0;
+    for (std::size_t f0 = 0; f0 < faces_before; ++f0) {
+      for (int e = 0; e < 3; ++e) {
+        if (touched[f0]) break;
+        const int a = F[f0][e], b = F[f0][(e + 1) % 3];
+        if (a > b) continue;  // each edge once, from the face where it runs a -> b, a < b
+        const auto it = edge_faces.find(static_cast<std::uint64_t>(a) * V + b);
+        if (it == edge_faces.end()) continue;
+        const int f1 = it->second[0], f2 = it->second[1];
+        if (f1 != static_cast<int>(f0) || touched[f2]) continue;
+        const Vec3 mid = 0.5 * (P[a] + P[b]);
+        if ((P[a] - P[b]).norm() <= 1.5 * opt.target_edge(mid)) continue;
+        int c = -1, d = -1;
+        for (int w : F[f1])
+          if (w != a && w != b) c = w;
+        for (int w : F[f2])
+          if (w != a && w != b) d = w;
+        const int m = static_cast<int>(P.size());
+        P.push_back(opt.project(mid));
+        // f1 = (a, b, c) and f2 = (b, a, d) up to rotation.
+        F[f1] = {a, m, c};
+        F[f2] = {b, m, d};
+        F.push_back({m, b, c});
+        F.push_back({m, a, d});
+        touched[f1] = touched[f2] = 1;
+        ++splits;
+      }
+    }
+    if (splits == 0) break;
+  }
+}
+
 void flip_edges(TriMesh& mesh) {
   auto& P = mesh.vertices;
   auto& F = mesh.faces;
@@ -346,6 +398,7 @@ void relax(TriMesh& mesh, const RemeshOptions& opt) {
 }  // namespace
 
 void remesh(TriMesh& mesh, const RemeshOptions& options) {
+  split_long_edges(mesh, options);
   // Two rounds: the first collapse leaves edges that its checks refused next to slivers; after
   // flips and relaxation most of them can go.
   for (int round = 0; round < 2; ++round) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace default_model {
 
@@ -43,6 +44,10 @@ void Capsule::finish() {
 // Distance estimate of an ellipsoid in the capsule's local frame (Inigo Quilez's bound
 // k0 (k0 - 1) / k1), with the along-axis coordinate measured beyond the clamped segment.
 double Capsule::distance(const Vec3& p) const {
+  return distance(p, nullptr);
+}
+
+double Capsule::distance(const Vec3& p, Vec3* normal) const {
   const Vec3 d = p - a;
   const double s = d.dot(axis);
   const double t = length > 0 ? std::clamp(s / length, 0.0, 1.0) : 0.0;
@@ -55,8 +60,28 @@ double Capsule::distance(const Vec3& p) const {
   const Vec3 q2(qu / (ru * ru), qv / (rv * rv), beyond / (rc * rc));
   const double k0 = q.norm();
   const double k1 = q2.norm();
+  if (normal) {
+    const Vec3 g = q2.x() * u + q2.y() * v + q2.z() * axis;
+    const double l = g.norm();
+    *normal = l > 1e-12 ? Vec3(g / l) : axis;
+  }
   if (k1 < 1e-12) return -std::min({ru, rv, rc});
   return k0 * (k0 - 1.0) / k1;
+}
+
+Dist smooth_union(const Dist& a, const Dist& b, double k) {
+  const Dist& lo = a.d <= b.d ? a : b;
+  const Dist& hi = a.d <= b.d ? b : a;
+  const double gap = hi.d - lo.d;
+  if (k <= 0 || gap >= k) return lo;
+  static const double kFullAngle = 1.0 - std::cos(50.0 * M_PI / 180.0);
+  const double cosine = std::clamp(a.n.dot(b.n), -1.0, 1.0);
+  const double ke = k * smoothstep(0.0, kFullAngle, 1.0 - cosine);
+  if (ke <= 1e-9 || gap >= ke) return lo;
+  const double h = (ke - gap) / ke;
+  // d/d(lo) = 1 - h/2 and d/d(hi) = h/2 for the polynomial smooth-min.
+  const Vec3 n = (1.0 - 0.5 * h) * lo.n + 0.5 * h * hi.n;
+  return {lo.d - h * h * ke * 0.25, n.norm() > 1e-12 ? Vec3(n.normalized()) : lo.n};
 }
 
 namespace {
@@ -75,6 +100,23 @@ Capsule ellipsoid(const Vec3& centre, const Vec3& axis, const Vec3& hint, double
   Capsule c{centre, centre + 1e-9 * axis.normalized(), hint, ru, rv, ru, rv, ra, ra, {}, {}, {}, 0};
   c.finish();
   return c;
+}
+
+// A sphere holding the given primitives (their axes plus their largest radius or cap).
+std::pair<Vec3, double> bounding_sphere(const std::vector<std::pair<Capsule, double>>& parts,
+                                        std::size_t begin) {
+  Vec3 c = Vec3::Zero();
+  int n = 0;
+  for (std::size_t i = begin; i < parts.size(); ++i, n += 2)
+    c += parts[i].first.a + parts[i].first.b;
+  c /= std::max(n, 1);
+  double r = 0;
+  for (std::size_t i = begin; i < parts.size(); ++i) {
+    const Capsule& q = parts[i].first;
+    const double extent = std::max({q.ru_a, q.rv_a, q.ru_b, q.rv_b, q.cap_a, q.cap_b});
+    r = std::max({r, (q.a - c).norm() + extent, (q.b - c).norm() + extent});
+  }
+  return {c, r};
 }
 
 Vec3 mirror(const Vec3& p) {
@@ -157,11 +199,11 @@ Mannequin::Mannequin() {
   be[kRightHand] = mirror(be[kLeftHand]);
 
   // Torso: superelliptic cross sections (half width in x, half depth in z, centre z).
-  levels_ = {{0.820, 0.120, 0.085, -0.005}, {0.880, 0.152, 0.102, -0.010},
-             {0.940, 0.154, 0.104, -0.002}, {1.010, 0.142, 0.099, 0.008},
-             {1.070, 0.134, 0.097, 0.010},  {1.140, 0.141, 0.103, 0.006},
-             {1.230, 0.156, 0.113, 0.002},  {1.320, 0.160, 0.108, -0.012},
-             {1.400, 0.138, 0.086, -0.028}, {1.450, 0.080, 0.060, -0.028}};
+  levels_ = {
+      {0.760, 0.150, 0.095, -0.012}, {0.830, 0.157, 0.100, -0.012}, {0.880, 0.158, 0.102, -0.010},
+      {0.940, 0.154, 0.104, -0.002}, {1.010, 0.142, 0.099, 0.008},  {1.070, 0.134, 0.097, 0.010},
+      {1.140, 0.141, 0.103, 0.006},  {1.230, 0.156, 0.113, 0.002},  {1.320, 0.160, 0.108, -0.012},
+      {1.400, 0.138, 0.086, -0.028}, {1.450, 0.080, 0.060, -0.028}};
 
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   for (int s = 0; s < 2; ++s) {
@@ -190,19 +232,38 @@ Mannequin::Mannequin() {
                                  0.0105, 0.009, 0.006, 0.008),
                          0.01});
   head_parts_.push_back({ellipsoid(Vec3(0, 1.562, 0.104), Y, X, 0.008, 0.016, 0.01), 0.008});
-  head_parts_.push_back({ellipsoid(Vec3(0, 1.539, 0.097), Y, X, 0.0065, 0.021, 0.009), 0.006});
-  head_parts_.push_back({ellipsoid(Vec3(0, 1.525, 0.095), Y, X, 0.007, 0.018, 0.009), 0.006});
+  // Lips: upper and lower, each fullest at the middle and thinning towards the corners, which
+  // sit back on the curve of the jaw; a thin cut between them is the mouth line.
+  for (double sx : {1.0, -1.0}) {
+    head_parts_.push_back({capsule(Vec3(0, 1.5385, 0.0960), Vec3(sx * 0.021, 1.5355, 0.0885), Y,
+                                   0.0062, 0.0085, 0.0032, 0.0045, 0.004, 0.004),
+                           0.006});
+    head_parts_.push_back({capsule(Vec3(0, 1.5245, 0.0935), Vec3(sx * 0.019, 1.5285, 0.0875), Y,
+                                   0.0068, 0.0088, 0.0032, 0.0045, 0.004, 0.004),
+                           0.006});
+  }
+  head_cuts_.push_back({ellipsoid(Vec3(0, 1.5317, 0.103), Y, X, 0.0016, 0.0225, 0.014), 0.0015});
   head_parts_.push_back({ellipsoid(Vec3(0, 1.499, 0.079), Y, X, 0.017, 0.022, 0.017), 0.016});
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.045, 1.567, 0.068), Y, X, 0.022, 0.022, 0.024), 0.02});
     head_cuts_.push_back(
         {ellipsoid(Vec3(sx * 0.031, 1.599, 0.101), Y, X, 0.013, 0.016, 0.012), 0.008});
+    // Eyes: an eyeball in the socket, the upper lid over its top and the lower lid under it,
+    // leaving an almond of eyeball between them.
+    const Vec3 eye(sx * 0.031, 1.5985, 0.0845);
+    head_details_.push_back({ellipsoid(eye, Y, X, 0.0122, 0.0122, 0.0122), 0.003});
+    head_details_.push_back(
+        {ellipsoid(eye + Vec3(0, 0.0088, 0.0002), Y, X, 0.0098, 0.0126, 0.0128), 0.004});
+    head_details_.push_back(
+        {ellipsoid(eye + Vec3(0, -0.0086, 0.0), Y, X, 0.0076, 0.0124, 0.0125), 0.004});
   }
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.076, 1.588, -0.005), Y, X, 0.03, 0.012, 0.02), 0.012});
   }
+
+  std::tie(head_centre_, head_radius_) = bounding_sphere(head_parts_, 0);
 
   for (int s = 0; s < 2; ++s) {
     auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
@@ -224,7 +285,16 @@ Mannequin::Mannequin() {
          0.03});
     const Vec3 zf = M(Vec3(0, 0, 1));
     // Four fingers, fanned slightly so that they part beyond the knuckles: index (on the
-    // thumb's side, +w) to little finger.
+    // thumb's side, +w) to little finger. Each has three phalanges curling a little towards the
+    // palm (-n), knuckles that stand out on the back (+n) at the base and middle joints, and a
+    // nail on the last phalanx.
+    side.hand_begin = side.arm.size();
+    auto nail = [&](const Vec3& tip, const Vec3& dir, const Vec3& back, double len, double width,
+                    double thickness) {
+      const Vec3 c = tip - 0.45 * len * dir + 0.9 * thickness * back;
+      side.arm.push_back({ellipsoid(c, dir, back, 0.42 * len, 0.0018, width), 0.0008});
+      fine_spots_.push_back({c, 0.009});
+    };
     {
       const Vec3 w = (zf - df * df.dot(zf) - n * n.dot(zf)).normalized();
       const double offset[4] = {0.0285, 0.0095, -0.0095, -0.0275};
@@ -233,30 +303,87 @@ Mannequin::Mannequin() {
       const double radius[4] = {0.0085, 0.0088, 0.0083, 0.0074};
       for (int f = 0; f < 4; ++f) {
         const Vec3 base = wr + 0.078 * df + offset[f] * w;
-        const Vec3 dir = (std::cos(angle[f]) * df + std::sin(angle[f]) * w).normalized();
-        side.arm.push_back({capsule(base, base + length[f] * dir, n, 0.0078, radius[f], 0.0062,
-                                    0.8 * radius[f], 0.008, 0.007),
-                            0.008});
+        Vec3 dir = (std::cos(angle[f]) * df + std::sin(angle[f]) * w).normalized();
+        const double r = radius[f];
+        // Knuckle at the back of the hand.
+        side.arm.push_back(
+            {ellipsoid(base - 0.006 * dir + 0.008 * n, dir, n, 0.008, 0.0065, 0.85 * r), 0.006});
+        const double part[3] = {0.45, 0.31, 0.24};
+        const double thick[4] = {0.0079, 0.0071, 0.0064, 0.0058};
+        const double wide[4] = {1.0, 0.9, 0.82, 0.74};
+        Vec3 a = base;
+        for (int ph = 0; ph < 3; ++ph) {
+          const Vec3 b = a + part[ph] * length[f] * dir;
+          side.arm.push_back({capsule(a, b, n, thick[ph], wide[ph] * r, 0.97 * thick[ph + 1],
+                                      0.97 * wide[ph + 1] * r, ph == 0 ? 0.008 : 0.5 * thick[ph],
+                                      ph == 2 ? 0.8 * thick[3] : 0.5 * thick[ph + 1]),
+                              0.0025});
+          if (ph < 2)  // the joint: as wide as the phalanx there, and proud on the back
+            side.arm.push_back({ellipsoid(b + 0.0016 * n, dir, n, 0.0055, thick[ph + 1] * 0.98,
+                                          wide[ph + 1] * r * 1.0),
+                                0.003});
+          else
+            nail(b + 0.8 * thick[3] * dir, dir, n, part[2] * length[f], 0.62 * r, thick[3]);
+          a = b;
+          // Curl: each phalanx turns 8 degrees further towards the palm.
+          dir = (std::cos(0.14) * dir - std::sin(0.14) * n).normalized();
+        }
       }
     }
-    side.arm.push_back(
-        {capsule(wr + 0.03 * df + 0.03 * zf - 0.004 * n, wr + 0.08 * df + 0.07 * zf - 0.01 * n, n,
-                 0.012, 0.012, 0.009, 0.009, 0.01, 0.009),
-         0.012});
+    {
+      // Thumb: two segments with a knuckle between them and a nail.
+      const Vec3 t0 = wr + 0.03 * df + 0.03 * zf - 0.004 * n;
+      const Vec3 t1 = wr + 0.058 * df + 0.052 * zf - 0.007 * n;
+      const Vec3 t2 = wr + 0.08 * df + 0.07 * zf - 0.01 * n;
+      const Vec3 dir = (t2 - t1).normalized();
+      const Vec3 back = (n - dir * dir.dot(n)).normalized();
+      side.arm.push_back({capsule(t0, t1, n, 0.012, 0.012, 0.0098, 0.0105, 0.01, 0.007), 0.012});
+      side.arm.push_back({ellipsoid(t1 + 0.0012 * back, dir, n, 0.006, 0.0102, 0.0108), 0.003});
+      side.arm.push_back(
+          {capsule(t1, t2, n, 0.0096, 0.0102, 0.0085, 0.0088, 0.007, 0.0085), 0.003});
+      nail(t2 + 0.006 * dir, dir, back, 0.03, 0.0068, 0.0085);
+    }
+    std::tie(side.hand_centre, side.hand_radius) = bounding_sphere(side.arm, side.hand_begin);
     (void)M;
     // Leg: thigh, calf with muscle, ankle, foot.
     const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
+    // The thigh's axis starts well above the hip joint, inside the trunk, so that its rounded
+    // top end lies above the morph (kMorphTop) and the thigh is a plain cone wherever the trunk
+    // morphs into it (a rounded end there left a corner round the hips).
     side.leg.push_back(
-        {capsule(hp + Vec3(0, 0.03, 0), kn, X, 0.084, 0.090, 0.047, 0.052, 0.05, 0.04), 0.0});
-    side.leg.push_back(
-        {capsule(kn + Vec3(0, 0.03, 0), an, X, 0.047, 0.051, 0.029, 0.033, 0.04, 0.03), 0.02});
+        {capsule(hp + Vec3(0, 0.10, 0), kn, X, 0.090, 0.087, 0.047, 0.052, 0.05, 0.045), 0.0});
+    // The shank starts at the knee with the thigh's radii there, so the two meet without the
+    // ring that an overlap of their rounded ends made.
+    side.leg.push_back({capsule(kn, an, X, 0.047, 0.052, 0.029, 0.033, 0.045, 0.03), 0.02});
     side.leg.push_back(
         {ellipsoid(kn + 0.28 * (an - kn) + Vec3(0, 0, -0.018), Y, X, 0.11, 0.046, 0.049), 0.04});
-    const Vec3 heel = Vec3(an.x(), 0.036, an.z() - 0.035);
-    const Vec3 toe = Vec3(an.x() + (s == 0 ? 1.0 : -1.0) * 0.012, 0.025, 0.165);
+    // Foot: heel, instep, the ball of the foot and five toes, the arch carved out of the
+    // inner sole. The toes sit side by side and blend into the ball but barely into each other,
+    // so grooves part them; the big toe is on the inner side (towards x = 0).
+    const double sx = s == 0 ? 1.0 : -1.0;
+    const double fx = an.x();
+    auto F = [&](double dx, double y, double z) { return Vec3(fx + sx * dx, y, z); };
     side.leg.push_back(
-        {capsule(an, Vec3(an.x(), 0.035, 0.05), X, 0.031, 0.033, 0.034, 0.03, 0.03, 0.03), 0.03});
-    side.leg.push_back({capsule(heel, toe, X, 0.031, 0.036, 0.041, 0.022, 0.03, 0.02), 0.025});
+        {capsule(an, F(0.0, 0.04, 0.04), X, 0.031, 0.033, 0.036, 0.03, 0.03, 0.03), 0.03});
+    side.leg.push_back({ellipsoid(F(0.0, 0.036, -0.052), Y, X, 0.036, 0.031, 0.036), 0.02});
+    side.leg.push_back({capsule(F(0.0, 0.034, -0.03), F(0.004, 0.026, 0.105), X, 0.031, 0.032,
+                                0.042, 0.022, 0.03, 0.02),
+                        0.025});
+    side.leg.push_back({ellipsoid(F(0.004, 0.021, 0.118), Y, X, 0.02, 0.042, 0.03), 0.02});
+    side.leg_cuts.push_back({ellipsoid(F(-0.036, -0.004, 0.035), Y, X, 0.02, 0.022, 0.06), 0.015});
+    {
+      // Big toe to little toe: base and tip (inner-outer offset, height, forward), radius.
+      const double dx[5] = {-0.026, -0.0075, 0.0055, 0.0175, 0.028};
+      const double base_z[5] = {0.128, 0.135, 0.132, 0.127, 0.120};
+      const double tip_z[5] = {0.186, 0.178, 0.170, 0.160, 0.148};
+      const double r[5] = {0.0125, 0.0083, 0.0078, 0.0074, 0.0068};
+      for (int t = 0; t < 5; ++t) {
+        const double y0 = t == 0 ? 0.019 : 0.017, y1 = t == 0 ? 0.013 : 0.0095;
+        const double tip_dx = dx[t] + 0.002 * t;
+        side.toes.push_back(capsule(F(dx[t], y0, base_z[t]), F(tip_dx, y1, tip_z[t]), X, r[t],
+                                    0.92 * r[t], 0.95 * r[t], 0.85 * r[t], 0.01, 0.8 * r[t]));
+      }
+    }
   }
 }
 
@@ -295,32 +422,80 @@ double Mannequin::torso_loft(const Vec3& p) const {
 
 double Mannequin::arm_field(const Side& s, const Vec3& p) const {
   double d = 1e9;
-  for (const auto& [c, k] : s.arm) d = smooth_min(d, c.distance(p), k);
+  for (std::size_t i = 0; i < s.hand_begin; ++i)
+    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
+  // The fingers (most of the primitives) only where they can change the result: farther from
+  // their sphere than d plus any blend radius they cannot.
+  if ((p - s.hand_centre).norm() - s.hand_radius > d + 0.02) return d;
+  for (std::size_t i = s.hand_begin; i < s.arm.size(); ++i)
+    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
   return d;
 }
 
-double Mannequin::leg_field(const Side& s, const Vec3& p) const {
-  double d = 1e9;
-  for (const auto& [c, k] : s.leg) d = smooth_min(d, c.distance(p), k);
+Dist Mannequin::leg_field(const Side& s, const Vec3& p) const {
+  Dist d;
+  for (const auto& [c, k] : s.leg) {
+    Dist e;
+    e.d = c.distance(p, &e.n);
+    d = smooth_union(d, e, k);
+  }
+  if (p.y() < 0.1) {  // the foot
+    for (const auto& [c, k] : s.leg_cuts) d.d = -smooth_min(-d.d, c.distance(p), k);
+    Dist toes;
+    double closest = 1e9;
+    for (const Capsule& c : s.toes) {
+      Dist e;
+      e.d = c.distance(p, &e.n);
+      toes.d = smooth_min(toes.d, e.d, 0.004);
+      if (e.d < closest) {
+        closest = e.d;
+        toes.n = e.n;
+      }
+    }
+    d = smooth_union(d, toes, 0.012);
+  }
+  return d;
+}
+
+double Mannequin::trunk_field(const Vec3& p) const {
+  double d = torso_loft(p);
+  for (const auto& [c, k] : torso_parts_) d = smooth_min(d, c.distance(p), k);
   return d;
 }
 
 double Mannequin::field(const Vec3& p) const {
-  double d = torso_loft(p);
-  for (const auto& [c, k] : torso_parts_) d = smooth_min(d, c.distance(p), k);
-  double head = 1e9;
-  for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
-  for (const auto& [c, k] : head_cuts_) head = -smooth_min(-head, c.distance(p), k);
-  d = smooth_min(d, head, 0.03);
+  double d = trunk_and_legs(p);
+  // The head only where it can change the result (it blends in with radius 0.03).
+  if ((p - head_centre_).norm() - head_radius_ <= d + 0.04) {
+    double head = 1e9;
+    for (const auto& [c, k] : head_parts_) head = smooth_min(head, c.distance(p), k);
+    for (const auto& [c, k] : head_cuts_) head = -smooth_min(-head, c.distance(p), k);
+    for (const auto& [c, k] : head_details_) head = smooth_min(head, c.distance(p), k);
+    d = smooth_min(d, head, 0.03);
+  }
   for (const Side& s : sides_) {
     const double k = 0.045 * (1.0 - smoothstep(0.10, 0.22, (p - s.shoulder).norm()));
     d = smooth_min(d, arm_field(s, p), k);
   }
-  for (const Side& s : sides_) {
-    const double k = 0.05 * smoothstep(0.74, 0.86, p.y());
-    d = smooth_min(d, leg_field(s, p), k);
-  }
   return d;
+}
+
+double Mannequin::trunk_and_legs(const Vec3& p) const {
+  // Between the crotch and the hip the field morphs from the two legs (below) into the trunk
+  // (above): a convex combination of the two distance estimates, so the pelvis narrows into
+  // the thighs without a seam. (Any union of the two, plain or smooth, left a band like a
+  // pair of shorts where the thighs run alongside the hips and a step where they leave them.)
+  // At the back the buttocks stay the trunk's down to their fold, so the morph is shorter.
+  const double top = kMorphTop - 0.11 * smoothstep(0.0, -0.08, p.z());
+  // C2 weight (6t^5 - 15t^4 + 10t^3): with a C1 one the surface's curvature jumps at the ends
+  // of the morph, a line that the soft-tissue fields of heavy bodies turned into a band.
+  const double t = std::clamp((p.y() - kMorphBottom) / (top - kMorphBottom), 0.0, 1.0);
+  const double w = t * t * t * (t * (6 * t - 15) + 10);
+  if (w >= 1.0) return trunk_field(p);
+  const Dist l0 = leg_field(sides_[0], p), l1 = leg_field(sides_[1], p);
+  const double legs = std::min(l0.d, l1.d);
+  if (w <= 0.0) return legs;
+  return w * trunk_field(p) + (1.0 - w) * legs;
 }
 
 Vec3 Mannequin::gradient(const Vec3& p) const {
@@ -359,12 +534,26 @@ double Mannequin::target_edge(const Vec3& p) const {
         L, 0.007 + 0.0105 * smoothstep(0.09, 0.14, (p - skeleton_.joints[kLeftHand + s]).norm()));
     (void)w;
   }
+  // Nails.
+  for (const auto& [c, r] : fine_spots_)
+    L = std::min(L, 0.0036 + 0.0139 * smoothstep(r, 1.6 * r, (p - c).norm()));
   // Head and face.
   L = std::min(L, 0.011 + 0.0065 * smoothstep(0.10, 0.16, (p - Vec3(0, 1.59, 0.02)).norm()));
-  // The face (brow, eyes, nose, lips, chin) finer still.
+  // The face (brow, eyes, nose, lips, chin) finer still, and eyes and mouth finest.
   L = std::min(L, 0.0075 + 0.0035 * smoothstep(0.035, 0.07, (p - Vec3(0, 1.56, 0.095)).norm()));
-  // Feet.
-  if (p.y() < 0.12) L = std::min(L, 0.012 + 0.0055 * smoothstep(0.06, 0.12, p.y()));
+  for (const Vec3& c : {Vec3(0.031, 1.5985, 0.095), Vec3(-0.031, 1.5985, 0.095)})
+    L = std::min(L, 0.003 + 0.0145 * smoothstep(0.014, 0.026, (p - c).norm()));
+  L = std::min(
+      L,
+      0.003 + 0.0145 *
+                  smoothstep(0.016, 0.03,
+                             (p - Vec3(0, 1.532, 0.097)).cwiseProduct(Vec3(0.7, 1.3, 1.0)).norm()));
+  // Feet, and the toes finer.
+  if (p.y() < 0.12) {
+    L = std::min(L, 0.012 + 0.0055 * smoothstep(0.06, 0.12, p.y()));
+    const Vec3 toes(std::abs(p.x()) - skeleton_.joints[kLeftAnkle].x(), 0.6 * p.y(), p.z() - 0.155);
+    L = std::min(L, 0.005 + 0.007 * smoothstep(0.035, 0.06, toes.norm()));
+  }
   return L;
 }
 

@@ -70,6 +70,15 @@ struct Capsule {
   double length = 0;
   void finish();
   double distance(const Vec3& p) const;
+  // The same, with the outward direction of the ellipsoidal bound at p (unit; the taper is
+  // ignored, which is close enough for deciding how two surfaces meet).
+  double distance(const Vec3& p, Vec3* normal) const;
+};
+
+// A distance estimate with the (approximate, unit) outward normal direction there.
+struct Dist {
+  double d = 1e9;
+  Vec3 n = Vec3(0, 1, 0);
 };
 
 // Torso cross sections: superellipses at key heights, interpolated smoothly in y.
@@ -94,22 +103,42 @@ class Mannequin {
  private:
   struct Side {
     std::vector<std::pair<Capsule, double>> arm;  // primitive, blend radius into the chain
+    std::size_t hand_begin = 0;                   // arm[hand_begin..] make the fingers
+    Vec3 hand_centre = Vec3::Zero();              // and lie within this sphere
+    double hand_radius = 0;
     std::vector<std::pair<Capsule, double>> leg;
+    std::vector<Capsule> toes;                         // joined to the foot, grooved between
+    std::vector<std::pair<Capsule, double>> leg_cuts;  // carved out of the foot (the arch)
     Vec3 shoulder;
   };
   double torso_loft(const Vec3& p) const;
   double arm_field(const Side& s, const Vec3& p) const;
-  double leg_field(const Side& s, const Vec3& p) const;
+  Dist leg_field(const Side& s, const Vec3& p) const;
+  double trunk_field(const Vec3& p) const;  // loft and torso parts
+  double trunk_and_legs(const Vec3& p) const;
+  // The trunk morphs into the legs between these heights (crotch to hip).
+  static constexpr double kMorphBottom = 0.775, kMorphTop = 0.97;
 
   Skeleton skeleton_;
   std::vector<TorsoLevel> levels_;
   std::vector<std::pair<Capsule, double>> torso_parts_;  // blended into the loft
   std::vector<std::pair<Capsule, double>> head_parts_;
-  std::vector<std::pair<Capsule, double>> head_cuts_;  // carved out of the head (eye sockets)
-  std::array<Side, 2> sides_;                          // 0 = left (+x), 1 = right
+  std::vector<std::pair<Capsule, double>> head_cuts_;     // carved out of the head (eye sockets)
+  std::vector<std::pair<Capsule, double>> head_details_;  // added after the cuts (eyes)
+  Vec3 head_centre_ = Vec3::Zero();  // every head primitive lies within this sphere
+  double head_radius_ = 0;
+  std::vector<std::pair<Vec3, double>> fine_spots_;  // finest mesh within these radii (nails)
+  std::array<Side, 2> sides_;                        // 0 = left (+x), 1 = right
 };
 
 double smooth_min(double a, double b, double k);
+// Smooth union that blends only where the two surfaces cross at an angle: where they run
+// side by side (nearly parallel normals, e.g. a thigh inside the hip, a calf overlapping the
+// thigh at the knee) the plain polynomial smooth-min would inflate them by up to k / 4 over
+// the whole overlap and leave a band with a step where the overlap ends; there this one
+// takes the plain union instead, and it blends fully (radius k) where they cross at 50
+// degrees or more.
+Dist smooth_union(const Dist& a, const Dist& b, double k);
 double smoothstep(double e0, double e1, double x);
 
 }  // namespace default_model

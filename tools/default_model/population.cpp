@@ -57,7 +57,7 @@ Eigen::MatrixXd cholesky_of(const SurveyTable& t) {
 // The independent factors' amplitudes below are per unit of this; 1.45 makes each of them big
 // enough to be seen in a grid cell (1 px ~ 4.5 mm) as its own principal component.
 constexpr double kFactorScale = 1.5;
-constexpr double kStatureTruncation = 1.5;
+constexpr double kStatureTruncation = 1.4;
 
 }  // namespace
 
@@ -181,7 +181,7 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     // meet in a tight crease that folds when all of them shrink or grow far at once; the hip
     // and buttock fields (gluteofemoral, lordosis) fade there too.
     const double crotch_core =
-        1.0 - 0.8 * std::exp(-(p - Vec3(0, 0.78, -0.03)).squaredNorm() / (2 * 0.05 * 0.05));
+        1.0 - 0.8 * std::exp(-(p - Vec3(0, 0.79, -0.045)).squaredNorm() / (2 * 0.055 * 0.055));
     const double crotch_fade =
         crotch_core * (1.0 - 0.5 * std::exp(-0.5 * (std::pow(p.x() / 0.2, 2) +
                                                     std::pow((p.y() - 0.79) / 0.045, 2))));
@@ -340,7 +340,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // Cross sections. The mannequin was modelled slimmer than the survey's reference person (its
   // tape-measure waist read 75.5 cm for a survey mean of 89.9 cm, its volume gave 64 kg for
   // 77 kg): these factors calibrate it, so that the mean bodies' mass matches the survey.
-  constexpr double kPelvisCal = 1.04, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.05;
+  constexpr double kPelvisCal = 1.09, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.08;
   const double pelvis_w = kPelvisCal * r(k_hip_breadth);
   const double pelvis_d = kPelvisCal * r(k_buttock_depth);
   const double waist_w = kWaistCal * r(k_waist_breadth), waist_d = kWaistCal * r(k_waist_depth);
@@ -416,13 +416,13 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double breast = a.female ? std::max(0.0, 0.024 + 0.006 * chest_z + 0.016 * f.bust)
                                  : std::max(0.0, 0.004 + 0.002 * f.muscle + 0.002 * chest_z);
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
-  t[kFields + kBelly] = 0.0155 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
-  t[kFields + kGluteofemoral] = -0.013 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
+  t[kFields + kBelly] = 0.018 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
+  t[kFields + kGluteofemoral] = -0.015 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
   t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
   t[kFields + kMuscle] = 0.006 * f.muscle + 0.002 * (a.female ? -1.0 : 1.0);
   t[kFields + kPostureShear] = 0.021 * f.posture;
   t[kFields + kHeadForward] = 0.045 * f.head_forward;
-  t[kFields + kLordosis] = 0.021 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
+  t[kFields + kLordosis] = 0.023 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
   t[kFields + kShouldersForward] = 0.0115 * f.shoulders_forward;
   t[kFields + kLimbFat] = 0.006 * f.limb_fat;
   t[kFields + kKneeAlignment] = 0.0105 * f.knee_alignment;
