@@ -197,10 +197,19 @@ PlanePreparer Session::plane_preparer() const {
   };
 }
 
-bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm) const {
+std::vector<sps::GridPoint> Session::decision_cells(const sps::GridView& view) const {
+  if (!held_) return cells_at(view);
+  for (const auto& [seen, cells] : held_cells_) {
+    if (seen.s == view.s && seen.t == view.t && seen.spacing == view.spacing) return cells;
+  }
+  return plane_cells(held_->plane, settings_.grid_size, view);
+}
+
+bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm,
+                                bool projected) const {
   if (!distance_) return false;
   std::vector<Eigen::VectorXd> xs;
-  for (auto& p : cells_at(view)) xs.push_back(std::move(p.x));
+  for (auto& p : projected ? cells_at(view) : decision_cells(view)) xs.push_back(std::move(p.x));
   const Eigen::MatrixXd d = distance_(xs);
   for (Eigen::Index i = 0; i < d.rows(); ++i) {
     for (Eigen::Index j = i + 1; j < d.cols(); ++j) {
@@ -240,7 +249,12 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
   if (!distance_ || !check) return zoomed(policy_.factors.empty() ? 0.5 : policy_.factors.front());
   for (double factor : policy_.factors) {
     const sps::GridView next = zoomed(factor);
-    if (!shows_look_alikes(next, policy_.distinct_mm)) return next;
+    // With holds the grid is judged first-order (decision_cells); the one taken is projected
+    // (it is shown next) and must still hold no look-alikes.
+    if (!shows_look_alikes(next, policy_.distinct_mm) &&
+        (!held_ || !shows_look_alikes(next, kCloneMm, true))) {
+      return next;
+    }
   }
   distinct = false;
   return view;  // nothing visible left to zoom into: stay (the plane ends here)
@@ -267,7 +281,7 @@ void Session::update_views() {
       sps::GridView wider = base;
       wider.spacing *= factor;
       bool clamped = false;
-      for (const auto& p : cells_at(wider)) clamped = clamped || p.clamped;
+      for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
       if (clamped) break;
       if (!shows_look_alikes(wider, kCloneMm)) {
         views_.front() = wider;

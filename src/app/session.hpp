@@ -187,7 +187,15 @@ class Session {
   void update_views();
   sps::GridView next_view(const sps::GridView& view, const sps::GridCell& clicked, bool check,
                           bool& distinct) const;
-  bool shows_look_alikes(const sps::GridView& view, double threshold_mm) const;
+  // On decision_cells(view), or with `projected` on the cells as shown.
+  bool shows_look_alikes(const sps::GridView& view, double threshold_mm,
+                         bool projected = false) const;
+  // The cells the zoom decisions look at: the grid as shown where it was projected already,
+  // else (holds) the held plane's own points, first-order held. A zoom click tries up to four
+  // grids and projecting one onto a girth slices a mesh per cell (~4 ms each, on the window's
+  // thread); a projection moves a cell only by what brings its held measurements back within
+  // tolerance, little against the 10 mm neighbours must differ by.
+  std::vector<sps::GridPoint> decision_cells(const sps::GridView& view) const;
 
   SessionSettings settings_;
   sps::PlaneSearch search_;

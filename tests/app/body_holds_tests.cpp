@@ -92,7 +92,11 @@ TEST_CASE(
   std::mt19937_64 rng(3);
   for (int plane = 0; plane < 3; ++plane) {
     CAPTURE(plane);
-    (void)app::play_plane_jnd(held.session, to_target, held.pairwise, 5.0, rng);
+    // Zoom decisions are taken on the held plane's own points; the grids shown (projected)
+    // still hold no look-alikes.
+    const auto outcome = app::play_plane_jnd(held.session, to_target, held.pairwise, 5.0, rng);
+    CHECK(outcome.grids >= 2);
+    CHECK(outcome.look_alike_grids == 0);
     // The search's centre and the plane shown: on the held height (the solve aims for 30% of
     // the 1 cm tolerance).
     CHECK(std::abs(height_m(held.session.search().current_plane().c) - 1.74) <= 0.003 + 1e-6);
