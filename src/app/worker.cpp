@@ -18,7 +18,15 @@ bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, 
         try {
           search.submit(submission.chosen, submission.extra_comparisons, submission.representatives,
                         submission.set_directly);
-          if (prepare) result.prepared = prepare(search);
+          if (prepare) {
+            // Only a head start for the window: if it fails, the window makes it itself
+            // (and reports what went wrong there); the optimizer's result stands.
+            try {
+              result.prepared = prepare(search);
+            } catch (const std::exception&) {
+              result.prepared.reset();
+            }
+          }
           result.search = std::move(search);
         } catch (const std::exception& e) {
           result.error = e.what();
