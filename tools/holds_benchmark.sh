@@ -3,12 +3,12 @@
 # target's height (`simulate --function body --hold height`), gap per plane. Writes
 # docs/benchmarks/holds_{free,height}.csv and the "Holds" section of docs/benchmarks.md
 # (between its holds-begin/holds-end markers).
-#   usage: tools/holds_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 10 10)
+#   usage: tools/holds_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 20 15)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${1:-$ROOT/build}
-TRIALS=${2:-10}
-PLANES=${3:-10}
+TRIALS=${2:-20}
+PLANES=${3:-15}
 APP=$BUILD/sequential-gallery
 OUT=$ROOT/docs/benchmarks
 mkdir -p "$OUT"
@@ -36,6 +36,12 @@ lines = [
     "as it is and once with `--hold height`: every cell keeps the target body's height (the",
     "user knows it), so the search explores only the other directions. Gap = RMS vertex",
     "distance (mm) of the best body so far to the target.",
+    "",
+    "The optimizer builds every held plane on the held surface (`src/sps/held_search.*`): its",
+    "centre is the posterior-mean maximum on the tangent plane of the held measurements through",
+    "the best point, moved onto them; x_EI and v are sought on that tangent plane; the first",
+    "plane spans the two most visible tangent directions, 0.5 long (0.4 without a hold). The",
+    "session then projects every cell onto the holds (`src/spaces/body_holds.*`).",
     "",
     "| plane | mean gap, free | mean gap, height held | median gap, free | median gap, height held |",
     "|---|---|---|---|---|",

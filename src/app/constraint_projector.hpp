@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "sps/held_search.hpp"
 #include "sps/plane.hpp"
 
 namespace app {
@@ -41,6 +42,9 @@ class ConstraintProjector {
   // What is held, for the session file (a resumed session holds them again). Empty: the
   // projector cannot be rebuilt from names and values (it is not saved).
   virtual std::vector<HeldValue> held_values() const { return {}; }
+  // The held surface for the optimizer (sps::PlaneSearch::set_hold), so that it builds its
+  // planes on it instead of having them projected afterwards. nullptr: it does not.
+  virtual std::shared_ptr<const sps::SearchHold> search_hold() const { return nullptr; }
 };
 
 }  // namespace app

@@ -159,7 +159,8 @@ void GalleryController::begin_frame(double now_seconds) {
   if (session_->submission_pending() && !worker_.busy() && submitted_generation_ != generation_ &&
       !pending_resume_) {
     worker_.start(session_->search(), session_->submission(), generation_,
-                  std::chrono::milliseconds(options_.optimizer_delay_ms));
+                  std::chrono::milliseconds(options_.optimizer_delay_ms),
+                  session_->plane_preparer());
     submitted_generation_ = generation_;
   }
   update_display();
@@ -351,7 +352,7 @@ void GalleryController::use_point(const Eigen::VectorXd& x) {
   ++generation_;
   point_job_ = x;
   worker_.start(session_->search(), std::move(submission), generation_,
-                std::chrono::milliseconds(options_.optimizer_delay_ms));
+                std::chrono::milliseconds(options_.optimizer_delay_ms), session_->plane_preparer());
   submitted_generation_ = generation_;
   say(MessageKind::kInfo, "the slider values are submitted as your choice; computing...");
 }
@@ -543,7 +544,7 @@ void GalleryController::install(SubmitWorker::Result result) {
     }
     const sps::Plane before = session_->search().current_plane();
     last_submit_seconds_ = result.seconds;
-    session_->adopt_point(x, std::move(*result.search));
+    session_->adopt_point(x, std::move(*result.search), std::move(result.prepared));
     inspected_ = -1;
     after_change(before);
     say(MessageKind::kSuccess, "the slider values are now the current best (plane " +
@@ -560,7 +561,7 @@ void GalleryController::install(SubmitWorker::Result result) {
     return;
   }
   last_submit_seconds_ = result.seconds;
-  session_->finish_plane(std::move(*result.search));
+  session_->finish_plane(std::move(*result.search), std::move(result.prepared));
   after_change(before);
   char text[96];
   std::snprintf(text, sizeof text, "plane %d done (optimizer %.2f s); here is the next one",

@@ -55,13 +55,14 @@ PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
   const Submission submission = session.submission();
   out.chosen = submission.chosen;
   SubmitWorker worker;
-  worker.start(session.search(), submission, 0);
+  worker.start(session.search(), submission, 0, std::chrono::milliseconds(0),
+               session.plane_preparer());
   auto result = worker.wait();
   if (!result || !result->search) {
     throw std::runtime_error("the optimizer failed: " + (result ? result->error : "no result"));
   }
   out.optimizer_seconds = result->search->last_submit_seconds();
-  session.finish_plane(std::move(*result->search));
+  session.finish_plane(std::move(*result->search), std::move(result->prepared));
   return out;
 }
 

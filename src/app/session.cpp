@@ -127,33 +127,8 @@ sps::GridView first_view(bool line, int n) {
   return view;
 }
 
-}  // namespace
-
-void Session::set_constraint_projector(std::shared_ptr<const ConstraintProjector> projector) {
-  projector_ = std::move(projector);
-  saved_holds_ = projector_ ? projector_->held_values() : std::vector<HeldValue>{};
-  update_views();
-}
-
-std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
-  if (!held_) return plane_cells(search_.current_plane(), view);
-  for (const auto& [seen, cells] : held_cells_) {
-    if (seen.s == view.s && seen.t == view.t && seen.spacing == view.spacing) return cells;
-  }
-  auto cells = plane_cells(held_->plane, view);
-  // Holds: each cell moved back onto the held measurements (inside the box); two threads, as
-  // a grid change happens on the window's thread (projections are thread-safe).
-  sps::parallel_for(static_cast<int>(cells.size()), 2, [&](int i) {
-    auto& p = cells[static_cast<std::size_t>(i)];
-    p.x = held_->project(p.x);
-  });
-  held_cells_.emplace_back(view, cells);
-  return cells;
-}
-
-std::vector<sps::GridPoint> Session::plane_cells(const sps::Plane& plane,
-                                                 const sps::GridView& view) const {
-  const int n = settings_.grid_size;
+// The points of `plane` a grid of size n shows at `view` (for a line, n*n points along it).
+std::vector<sps::GridPoint> plane_cells(const sps::Plane& plane, int n, const sps::GridView& view) {
   if (!plane.is_line()) return sps::grid_points(plane, n, view);
   std::vector<sps::GridPoint> points;
   for (int k = 0; k < line_points(n); ++k) {
@@ -167,10 +142,74 @@ std::vector<sps::GridPoint> Session::plane_cells(const sps::Plane& plane,
   return points;
 }
 
-bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm) const {
+// Each cell moved back onto the holds (inside the box), on two threads (projections are
+// thread-safe).
+void project_cells(const HeldPlane& held, std::vector<sps::GridPoint>& cells) {
+  sps::parallel_for(static_cast<int>(cells.size()), 2, [&](int i) {
+    auto& p = cells[static_cast<std::size_t>(i)];
+    p.x = held.project(p.x);
+  });
+}
+
+bool same_plane(const sps::Plane& a, const sps::Plane& b) {
+  return a.c == b.c && a.u == b.u && a.v.size() == b.v.size() && a.v == b.v &&
+         a.u_neg_scale == b.u_neg_scale;
+}
+
+}  // namespace
+
+void Session::set_constraint_projector(std::shared_ptr<const ConstraintProjector> projector) {
+  projector_ = std::move(projector);
+  saved_holds_ = projector_ ? projector_->held_values() : std::vector<HeldValue>{};
+  // The optimizer builds its next planes on the held surface; before the first click it also
+  // chooses its first plane again (on the surface, or without the hold). The preference data
+  // stay either way, and a plane already clicked on stays as it is (projected).
+  search_.set_hold(projector_ ? projector_->search_hold() : nullptr);
+  if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
+    start_point_ = search_.current_plane().c;
+  }
+  update_views();
+}
+
+std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
+  if (!held_) return plane_cells(search_.current_plane(), settings_.grid_size, view);
+  for (const auto& [seen, cells] : held_cells_) {
+    if (seen.s == view.s && seen.t == view.t && seen.spacing == view.spacing) return cells;
+  }
+  auto cells = plane_cells(held_->plane, settings_.grid_size, view);
+  // Holds: each cell moved back onto the held measurements (a zoom level's grid, made on the
+  // window's thread; the first grid of a new plane comes prepared from the worker).
+  project_cells(*held_, cells);
+  held_cells_.emplace_back(view, cells);
+  return cells;
+}
+
+PlanePreparer Session::plane_preparer() const {
+  if (!projector_) return {};
+  return [projector = projector_, n = settings_.grid_size](const sps::PlaneSearch& search) {
+    PreparedPlane prepared;
+    prepared.plane = search.current_plane();
+    prepared.held = projector->hold(prepared.plane);
+    prepared.first_cells =
+        plane_cells(prepared.held->plane, n, first_view(prepared.plane.is_line(), n));
+    project_cells(*prepared.held, prepared.first_cells);
+    return prepared;
+  };
+}
+
+std::vector<sps::GridPoint> Session::decision_cells(const sps::GridView& view) const {
+  if (!held_) return cells_at(view);
+  for (const auto& [seen, cells] : held_cells_) {
+    if (seen.s == view.s && seen.t == view.t && seen.spacing == view.spacing) return cells;
+  }
+  return plane_cells(held_->plane, settings_.grid_size, view);
+}
+
+bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm,
+                                bool projected) const {
   if (!distance_) return false;
   std::vector<Eigen::VectorXd> xs;
-  for (auto& p : cells_at(view)) xs.push_back(std::move(p.x));
+  for (auto& p : projected ? cells_at(view) : decision_cells(view)) xs.push_back(std::move(p.x));
   const Eigen::MatrixXd d = distance_(xs);
   for (Eigen::Index i = 0; i < d.rows(); ++i) {
     for (Eigen::Index j = i + 1; j < d.cols(); ++j) {
@@ -210,7 +249,12 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
   if (!distance_ || !check) return zoomed(policy_.factors.empty() ? 0.5 : policy_.factors.front());
   for (double factor : policy_.factors) {
     const sps::GridView next = zoomed(factor);
-    if (!shows_look_alikes(next, policy_.distinct_mm)) return next;
+    // With holds the grid is judged first-order (decision_cells); the one taken is projected
+    // (it is shown next) and must still hold no look-alikes.
+    if (!shows_look_alikes(next, policy_.distinct_mm) &&
+        (!held_ || !shows_look_alikes(next, kCloneMm, true))) {
+      return next;
+    }
   }
   distinct = false;
   return view;  // nothing visible left to zoom into: stay (the plane ends here)
@@ -218,8 +262,15 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
 
 void Session::update_views() {
   held_cells_.clear();
-  held_ = projector_ ? projector_->hold(search_.current_plane()) : nullptr;
+  held_ = nullptr;
   const bool line = search_.current_plane().is_line();
+  if (projector_ && prepared_ && same_plane(prepared_->plane, search_.current_plane())) {
+    held_ = prepared_->held;
+    held_cells_.emplace_back(first_view(line, settings_.grid_size), prepared_->first_cells);
+  } else if (projector_) {
+    held_ = projector_->hold(search_.current_plane());
+  }
+  prepared_.reset();
   views_.assign(1, first_view(line, settings_.grid_size));
   if (distance_ && !line && shows_look_alikes(views_.front(), kCloneMm)) {
     // The optimizer's plane is too small to see (e.g. it runs along directions that barely
@@ -230,7 +281,7 @@ void Session::update_views() {
       sps::GridView wider = base;
       wider.spacing *= factor;
       bool clamped = false;
-      for (const auto& p : cells_at(wider)) clamped = clamped || p.clamped;
+      for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
       if (clamped) break;
       if (!shows_look_alikes(wider, kCloneMm)) {
         views_.front() = wider;
@@ -329,11 +380,12 @@ Submission Session::submission() const {
   return s;
 }
 
-void Session::finish_plane(sps::PlaneSearch updated_search) {
+void Session::finish_plane(sps::PlaneSearch updated_search, std::optional<PreparedPlane> prepared) {
   if (!submission_pending()) throw std::logic_error("finish_plane without a finished plane");
   history_.push_back({current_best(), path_});
   search_ = std::move(updated_search);
   path_.clear();
+  prepared_ = std::move(prepared);
   update_views();
 }
 
@@ -351,13 +403,15 @@ bool Session::undo_click() {
   return true;
 }
 
-void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search) {
+void Session::adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search,
+                          std::optional<PreparedPlane> prepared) {
   if (chosen.size() != settings_.components) {
     throw std::invalid_argument("adopt_point: the point has the wrong dimension");
   }
   history_.push_back({chosen, path_, true});
   search_ = std::move(updated_search);
   path_.clear();
+  prepared_ = std::move(prepared);
   update_views();
 }
 

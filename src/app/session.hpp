@@ -79,6 +79,18 @@ struct Submission {
   bool set_directly = false;
 };
 
+// Holds: the next plane's held version and its first grid, made off the window thread (the
+// optimizer's worker, app/worker.hpp) because projecting onto girths slices a mesh per cell
+// (a new plane took 150-210 ms on the window thread). Session::finish_plane() installs it
+// when it belongs to the plane the optimizer returned.
+struct PreparedPlane {
+  sps::Plane plane;                         // the optimizer's plane it was made from
+  std::shared_ptr<const HeldPlane> held;    // ConstraintProjector::hold(plane)
+  std::vector<sps::GridPoint> first_cells;  // the held cells of the plane's first view
+};
+// Makes the PreparedPlane of a search's current plane; thread-safe.
+using PlanePreparer = std::function<PreparedPlane(const sps::PlaneSearch&)>;
+
 class Session {
  public:
   explicit Session(const SessionSettings& settings);
@@ -148,11 +160,17 @@ class Session {
   // "Use this"), so no click the user made is lost.
   std::vector<std::vector<Eigen::VectorXd>> level_comparisons() const;
   // Installs the search state computed from submission() (on a worker) and starts the next plane.
-  void finish_plane(sps::PlaneSearch updated_search);
+  // `prepared` (from plane_preparer(), on the same worker) saves the window thread the holds'
+  // projections; it is ignored when it belongs to another plane.
+  void finish_plane(sps::PlaneSearch updated_search, std::optional<PreparedPlane> prepared = {});
+  // With holds, what a worker runs after the optimizer to prepare the next plane (it holds
+  // the projector and the grid size, not the session); empty without holds.
+  PlanePreparer plane_preparer() const;
   // Installs the search state computed from a point the user set directly (expert sliders,
   // submitted as preferred over the previous best): it ends the current plane as if chosen
   // there, with no clicks in its history entry.
-  void adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search);
+  void adopt_point(const Eigen::VectorXd& chosen, sps::PlaneSearch updated_search,
+                   std::optional<PreparedPlane> prepared = {});
 
   // Undo the last click; with no click on this plane, reopens the previous plane with its
   // clicks minus the last one. False if there is nothing to undo.
@@ -176,8 +194,15 @@ class Session {
   void update_views();
   sps::GridView next_view(const sps::GridView& view, const sps::GridCell& clicked, bool check,
                           bool& distinct) const;
-  bool shows_look_alikes(const sps::GridView& view, double threshold_mm) const;
-  std::vector<sps::GridPoint> plane_cells(const sps::Plane& plane, const sps::GridView& view) const;
+  // On decision_cells(view), or with `projected` on the cells as shown.
+  bool shows_look_alikes(const sps::GridView& view, double threshold_mm,
+                         bool projected = false) const;
+  // The cells the zoom decisions look at: the grid as shown where it was projected already,
+  // else (holds) the held plane's own points, first-order held. A zoom click tries up to four
+  // grids and projecting one onto a girth slices a mesh per cell (~4 ms each, on the window's
+  // thread); a projection moves a cell only by what brings its held measurements back within
+  // tolerance, little against the 10 mm neighbours must differ by.
+  std::vector<sps::GridPoint> decision_cells(const sps::GridView& view) const;
 
   SessionSettings settings_;
   sps::PlaneSearch search_;
@@ -193,7 +218,8 @@ class Session {
   std::shared_ptr<const ConstraintProjector> projector_;
   std::shared_ptr<const HeldPlane> held_;
   mutable std::vector<std::pair<sps::GridView, std::vector<sps::GridPoint>>> held_cells_;
-  std::vector<HeldValue> saved_holds_;  // what to_json() writes as "holds"
+  std::vector<HeldValue> saved_holds_;     // what to_json() writes as "holds"
+  std::optional<PreparedPlane> prepared_;  // for the next update_views(), if it matches
 };
 
 }  // namespace app

@@ -6,11 +6,11 @@
 namespace app {
 
 bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, int generation,
-                         std::chrono::milliseconds delay) {
+                         std::chrono::milliseconds delay, PlanePreparer prepare) {
   if (job_.valid()) return false;
   job_ = std::async(
       std::launch::async, [search = sps::PlaneSearch(search), submission = std::move(submission),
-                           generation, delay]() mutable {
+                           generation, delay, prepare = std::move(prepare)]() mutable {
         Result result;
         result.generation = generation;
         const auto start = std::chrono::steady_clock::now();
@@ -18,6 +18,15 @@ bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, 
         try {
           search.submit(submission.chosen, submission.extra_comparisons, submission.representatives,
                         submission.set_directly);
+          if (prepare) {
+            // Only a head start for the window: if it fails, the window makes it itself
+            // (and reports what went wrong there); the optimizer's result stands.
+            try {
+              result.prepared = prepare(search);
+            } catch (const std::exception&) {
+              result.prepared.reset();
+            }
+          }
           result.search = std::move(search);
         } catch (const std::exception& e) {
           result.error = e.what();

@@ -20,12 +20,18 @@ class SubmitWorker {
     std::string error;
     int generation = 0;
     double seconds = 0.0;
+    // With holds: the next plane held and its first grid projected (Session::plane_preparer),
+    // so the window thread only installs them.
+    std::optional<PreparedPlane> prepared;
   };
 
   // Starts computing; only one job at a time (returns false if one is running).
   // `delay` (testing only) holds the job back, to show that the UI stays live meanwhile.
+  // `prepare` (Session::plane_preparer(); may be empty) runs after the optimizer, on the same
+  // thread.
   bool start(const sps::PlaneSearch& search, Submission submission, int generation,
-             std::chrono::milliseconds delay = std::chrono::milliseconds(0));
+             std::chrono::milliseconds delay = std::chrono::milliseconds(0),
+             PlanePreparer prepare = {});
   bool busy() const { return job_.valid(); }
   // The finished result, once; nullopt while running or idle.
   std::optional<Result> poll();

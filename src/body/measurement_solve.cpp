@@ -134,20 +134,23 @@ SolveResult MeasurementConstraints::solve(const Eigen::VectorXd& start, int max_
   Eigen::VectorXd x = x0;
   Eigen::VectorXd r = scaled_residual(values(x));
   ++result.evaluations;
+  // The Jacobian is taken only when a step is needed: a start point that already meets the
+  // targets (a plane's centre the optimizer put on them, a cell near it) costs one body.
   Eigen::MatrixXd J;
   bool fresh = false;
-  if (jacobian_hint != nullptr && jacobian_hint->rows() == m && jacobian_hint->cols() == K) {
-    J = tol_inv.asDiagonal() * *jacobian_hint;
-  } else {
-    J = tol_inv.asDiagonal() * jacobian(x);
-    result.evaluations += static_cast<int>(2 * K);
-    fresh = true;
-  }
+  const bool hinted =
+      jacobian_hint != nullptr && jacobian_hint->rows() == m && jacobian_hint->cols() == K;
+  if (hinted) J = tol_inv.asDiagonal() * *jacobian_hint;
   for (int it = 0; it < max_iterations; ++it) {
     result.iterations = it + 1;
     // Within tolerance: done (the start point itself when it already meets the targets; each
     // step below moved towards the start point as far as the constraints allowed).
     if (r.allFinite() && r.cwiseAbs().maxCoeff() <= 1.0) break;
+    if (J.size() == 0) {
+      J = tol_inv.asDiagonal() * jacobian(x);
+      result.evaluations += static_cast<int>(2 * K);
+      fresh = true;
+    }
     // Minimum-norm step towards x0 on the free coordinates: the linearized constraint
     // r + J (x' - x) = 0 with the smallest |x' - x0|. Coordinates that the step would push
     // through a face of the box are pinned there and the step is recomputed (an active set).
@@ -201,7 +204,7 @@ SolveResult MeasurementConstraints::solve(const Eigen::VectorXd& start, int max_
       fresh = true;
       continue;
     }
-    if (jacobian_hint == nullptr || alpha < 1.0) {
+    if (!hinted || alpha < 1.0) {
       J = tol_inv.asDiagonal() * jacobian(x);
       result.evaluations += static_cast<int>(2 * K);
       fresh = true;
@@ -210,10 +213,11 @@ SolveResult MeasurementConstraints::solve(const Eigen::VectorXd& start, int max_
     }
   }
   result.x = x;
-  const Eigen::VectorXd v = values(x);
-  ++result.evaluations;
+  // r is always the residual at x: its values without measuring the body again.
+  Eigen::VectorXd v = r.cwiseProduct(tolerance_);
+  for (Eigen::Index i = 0; i < m; ++i) v[i] += targets_[static_cast<std::size_t>(i)].value;
   result.values.assign(v.data(), v.data() + v.size());
-  const Eigen::VectorXd rf = scaled_residual(v);
+  const Eigen::VectorXd& rf = r;
   result.reached = rf.allFinite() && rf.cwiseAbs().maxCoeff() <= 1.0;
   std::string missed, nearest;
   for (std::size_t i = 0; i < targets_.size(); ++i) {

@@ -91,6 +91,9 @@ class TimedProjector : public app::ConstraintProjector {
     return std::make_shared<TimedHeldPlane>(std::move(held), clock_);
   }
   std::string description() const override { return inner_->description(); }
+  std::shared_ptr<const sps::SearchHold> search_hold() const override {
+    return inner_->search_hold();
+  }
 
  private:
   std::shared_ptr<const app::ConstraintProjector> inner_;
@@ -242,8 +245,9 @@ int run_body_simulation(const ArgParser& args) {
   if (clock->planes > 0) {
     std::cerr << "holds: " << clock->planes << " held planes, "
               << 1000.0 * clock->plane_seconds / clock->planes
-              << " ms each (centre solve + tangent); " << clock->cells << " cells projected, "
-              << 1000.0 * clock->cell_seconds / std::max(1L, clock->cells) << " ms each\n";
+              << " ms each (centre solve + tangent, on the optimizer's worker); " << clock->cells
+              << " cells projected, " << 1000.0 * clock->cell_seconds / std::max(1L, clock->cells)
+              << " ms each\n";
   }
 
   std::ostringstream title;

@@ -55,10 +55,29 @@ class HeldBodyPlane : public app::HeldPlane {
   Eigen::MatrixXd jacobian_;
 };
 
+// The held measurements as the optimizer's surface: points solved onto them, normals their
+// Jacobian (central differences, body/measurement_solve.hpp).
+class MeasurementSurface : public sps::SearchHold {
+ public:
+  explicit MeasurementSurface(std::shared_ptr<const body::MeasurementConstraints> constraints)
+      : constraints_(std::move(constraints)) {}
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+    return constraints_->solve(x).x;
+  }
+  Eigen::MatrixXd normals(const Eigen::VectorXd& x) const override {
+    return constraints_->jacobian(x);
+  }
+
+ private:
+  std::shared_ptr<const body::MeasurementConstraints> constraints_;
+};
+
 class BodyHolds : public app::ConstraintProjector {
  public:
   explicit BodyHolds(std::shared_ptr<const body::MeasurementConstraints> constraints)
-      : constraints_(std::move(constraints)) {}
+      : constraints_(constraints),
+        surface_(std::make_shared<const MeasurementSurface>(std::move(constraints))) {}
+  std::shared_ptr<const sps::SearchHold> search_hold() const override { return surface_; }
   std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
     return std::make_shared<HeldBodyPlane>(constraints_, plane);
   }
@@ -78,6 +97,7 @@ class BodyHolds : public app::ConstraintProjector {
 
  private:
   std::shared_ptr<const body::MeasurementConstraints> constraints_;
+  std::shared_ptr<const MeasurementSurface> surface_;
 };
 
 }  // namespace

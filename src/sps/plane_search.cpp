@@ -248,8 +248,18 @@ bool PlaneSearch::use_visible_first_plane() {
       data_.point_count() > 0) {
     return false;
   }
-  plane_ = visible_first_plane(options_.perceptual_scale);
+  return visible_start(plane_);
+}
+
+bool PlaneSearch::visible_start(Plane& plane) const {
+  if (options_.perceptual_scale.size() != options_.dims) return false;
+  plane = hold_ ? held_first_plane(*hold_, options_.perceptual_scale, kHeldFirstPlaneExtent)
+                : visible_first_plane(options_.perceptual_scale);
   return true;
+}
+
+void PlaneSearch::set_hold(std::shared_ptr<const SearchHold> hold) {
+  hold_ = std::move(hold);
 }
 
 void PlaneSearch::submit(const Eigen::VectorXd& chosen,
@@ -348,8 +358,18 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     const int best = model_->best_observed_index();
     if (best >= 0) x_plus = model_->points().col(best);
   }
-  if (!set_directly && options_.centre_on_mean_maximum &&
-      options_.perceptual_scale.size() == options_.dims) {
+  const bool mean_centre = !set_directly && options_.centre_on_mean_maximum &&
+                           options_.perceptual_scale.size() == options_.dims;
+  if (hold_) {
+    // Every point shown lies on the held surface: the centre is sought there too (on the
+    // tangent plane through the best point, then moved onto the surface).
+    x_plus = hold_->project(x_plus);
+    if (mean_centre) {
+      const Eigen::MatrixXd projector = tangent_projector(hold_->normals(x_plus), options_.dims);
+      x_plus = hold_->project(
+          maximize_posterior_mean_on_tangent(*model_, x_plus, projector, 4, options_.threads));
+    }
+  } else if (mean_centre) {
     x_plus = maximize_posterior_mean(*model_, x_plus, 4, 60, options_.threads);
   }
   if (options_.method == Method::kSpsRandom) {
@@ -357,6 +377,25 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     return;
   }
   const double best_mean = model_->mean(x_plus);
+  if (hold_) {
+    const Eigen::MatrixXd projector = tangent_projector(hold_->normals(x_plus), options_.dims);
+    if (options_.method == Method::kSls) {
+      plane_ = sls_line(
+          x_plus, maximize_expected_improvement_on_tangent(
+                      *model_, best_mean, x_plus, projector, rng_,
+                      options_.ei_restarts > 0 ? options_.ei_restarts : 6, 0, options_.threads));
+      return;
+    }
+    HeldPlaneSettings hs;
+    hs.ei_starts = options_.ei_restarts > 0 ? options_.ei_restarts : 6;
+    hs.plane_restarts = options_.plane_restarts;
+    hs.threads = options_.threads;
+    hs.perceptual_scale = options_.perceptual_scale;
+    hs.min_plane_length = options_.min_plane_length;
+    hs.keep_centre = set_directly;
+    plane_ = held_sps_plane(*model_, x_plus, projector, best_mean, rng_, hs);
+    return;
+  }
   EiSearchSettings ei;
   ei.starts = options_.ei_restarts;
   ei.threads = options_.threads;
@@ -394,9 +433,7 @@ void PlaneSearch::start_over() {
   history_.clear();
   ++start_overs_;
   plane_ = first_plane(options_.dims, rng_);
-  if (options_.perceptual_scale.size() == options_.dims) {
-    plane_ = visible_first_plane(options_.perceptual_scale);
-  }
+  visible_start(plane_);
 }
 
 bool PlaneSearch::undo() {

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "sps/held_search.hpp"
 #include "sps/plane.hpp"
 #include "sps/preference_data.hpp"
 #include "sps/preference_model.hpp"
@@ -148,6 +149,14 @@ class PlaneSearch {
   // false and nothing changes.
   bool use_visible_first_plane();
 
+  // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
+  // projected onto it, x_EI and v in its tangent space, the first plane along its most
+  // visible tangent directions, from use_visible_first_plane() and start_over() on); nullptr
+  // releases it. The current plane stays until the next one is made. Not saved with the
+  // state: the caller installs it again after from_json(). Without a hold nothing changes.
+  void set_hold(std::shared_ptr<const SearchHold> hold);
+  const SearchHold* hold() const { return hold_.get(); }
+
   // Seconds spent inside the last submit() (absorbing the choice and proposing the plane).
   double last_submit_seconds() const { return last_submit_seconds_; }
 
@@ -166,6 +175,9 @@ class PlaneSearch {
   };
 
   void propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly);
+  // The first plane for the current options and hold (visible_first_plane or
+  // held_first_plane), or false when there is no perceptual scale.
+  bool visible_start(Plane& plane) const;
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 
@@ -174,7 +186,8 @@ class PlaneSearch {
   PreferenceData data_;
   std::shared_ptr<const PreferenceModel> model_;  // immutable; shared by copies
   Plane plane_;
-  std::vector<Snapshot> history_;  // one per submission, oldest first
+  std::vector<Snapshot> history_;           // one per submission, oldest first
+  std::shared_ptr<const SearchHold> hold_;  // shared by copies; const and thread-safe
   int start_overs_ = 0;
   double last_submit_seconds_ = 0.0;
   // model.btl_scale as given, restored when the perceptual scale is removed.

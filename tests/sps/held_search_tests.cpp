@@ -1,0 +1,180 @@
+// The search on a held surface (sps/held_search.hpp): planes built on the surface, in its
+// tangent space, inside the box; without a hold nothing changes.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include <catch2/catch.hpp>
+
+#include "sps/held_search.hpp"
+#include "sps/plane_search.hpp"
+#include "testing/simulated_user.hpp"
+#include "testing/test_functions.hpp"
+
+namespace {
+
+// A linear hold a.x = b (a "measurement" that is a weighted sum of the coordinates, the first
+// weighted most, as a body's height is mostly its first shape coordinate). The projection is
+// the nearest point of the plane, then clamped and corrected along the free coordinates.
+class LinearHold : public sps::SearchHold {
+ public:
+  LinearHold(Eigen::VectorXd a, double b) : a_(std::move(a)), b_(b) {}
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+    Eigen::VectorXd y = x.cwiseMax(0.0).cwiseMin(1.0);
+    for (int pass = 0; pass < 50; ++pass) {
+      Eigen::VectorXd free_a = a_;
+      for (Eigen::Index k = 0; k < y.size(); ++k) {
+        const double r = b_ - a_.dot(y);
+        if ((y[k] <= 0.0 && a_[k] * r < 0.0) || (y[k] >= 1.0 && a_[k] * r > 0.0)) free_a[k] = 0.0;
+      }
+      if (free_a.squaredNorm() == 0.0) break;
+      y = (y + (b_ - a_.dot(y)) / free_a.squaredNorm() * free_a).cwiseMax(0.0).cwiseMin(1.0);
+      if (std::abs(a_.dot(y) - b_) < 1e-12) break;
+    }
+    return y;
+  }
+  Eigen::MatrixXd normals(const Eigen::VectorXd&) const override { return a_.transpose(); }
+  double value(const Eigen::VectorXd& x) const { return a_.dot(x); }
+
+ private:
+  Eigen::VectorXd a_;
+  double b_;
+};
+
+Eigen::VectorXd weights(int d) {
+  Eigen::VectorXd a = Eigen::VectorXd::Constant(d, 0.05);
+  a[0] = 1.0;
+  a[d - 1] = 0.2;
+  return a;
+}
+
+Eigen::VectorXd perceptual_scale(int d) {
+  Eigen::VectorXd s(d);
+  for (int k = 0; k < d; ++k) s[k] = 300.0 / (1.0 + 2.0 * k);  // the first far most visible
+  return s;
+}
+
+bool inside(const Eigen::VectorXd& x) {
+  return x.minCoeff() >= -1e-9 && x.maxCoeff() <= 1.0 + 1e-9;
+}
+
+}  // namespace
+
+TEST_CASE("tangent projector: keeps the held quantities, idempotent, symmetric", "[held]") {
+  const int d = 6;
+  Eigen::MatrixXd n(2, d);
+  n.row(0) = weights(d).transpose();
+  n.row(1) = Eigen::VectorXd::LinSpaced(d, -1.0, 1.0).transpose();
+  const Eigen::MatrixXd p = sps::tangent_projector(n, d);
+  CHECK((n * p).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((p * p - p).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK((p - p.transpose()).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(p.trace() == Approx(d - 2).margin(1e-9));
+  // Dependent normals (the same quantity twice) leave one constraint, not a blow-up.
+  Eigen::MatrixXd twice(2, d);
+  twice.row(0) = weights(d).transpose();
+  twice.row(1) = 2.0 * weights(d).transpose();
+  CHECK(sps::tangent_projector(twice, d).trace() == Approx(d - 1).margin(1e-9));
+  CHECK(sps::tangent_projector(Eigen::MatrixXd(0, d), d).isIdentity());
+}
+
+TEST_CASE("held first plane: on the surface, tangent, visible, inside the box", "[held]") {
+  const int d = 8;
+  const LinearHold hold(weights(d), 0.62);
+  const Eigen::VectorXd scale = perceptual_scale(d);
+  const sps::Plane p = sps::held_first_plane(hold, scale, sps::kVisibleFirstPlaneExtent);
+  CHECK(hold.value(p.c) == Approx(0.62).margin(1e-9));
+  CHECK(std::abs(weights(d).dot(p.u)) < 1e-9);
+  CHECK(std::abs(weights(d).dot(p.v)) < 1e-9);
+  for (double s : {-1.0, 1.0}) {
+    CHECK(inside(p.c + s * p.u));
+    CHECK(inside(p.c + s * p.v));
+  }
+  // Not degenerate: u is the most visible tangent direction per unit of change (more than
+  // what the hold leaves of the first coordinate, which the plane without hold spans), and v
+  // another one, orthogonal to it.
+  const Eigen::MatrixXd tangent = sps::tangent_projector(weights(d).transpose(), d);
+  const auto per_unit = [&](const Eigen::VectorXd& w) {
+    return w.cwiseProduct(scale).norm() / w.norm();
+  };
+  REQUIRE(p.u.norm() > 0.1);
+  REQUIRE(p.v.norm() > 0.1);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < 50; ++i) {
+    Eigen::VectorXd w(d);
+    for (int k = 0; k < d; ++k) w[k] = normal(rng);
+    CHECK(per_unit(p.u) >= per_unit(tangent * w) - 1e-9);
+  }
+  const sps::Plane free = sps::visible_first_plane(scale);
+  CHECK(per_unit(p.u) >= per_unit(tangent * free.u) - 1e-9);
+  CHECK(per_unit(p.v) > 0.3 * per_unit(p.u));
+  CHECK(std::abs(p.u.dot(p.v)) < 1e-9);
+}
+
+TEST_CASE("a held search builds every plane on the surface, in its tangent space",
+          "[held][search]") {
+  const int d = 6;
+  auto hold = std::make_shared<const LinearHold>(weights(d), 0.55);
+  sps::SearchOptions o;
+  o.dims = d;
+  o.seed = 11;
+  sps::PlaneSearch search(o);
+  search.set_perceptual_scale(perceptual_scale(d));
+  const sps::Plane unheld = search.current_plane();
+  search.set_hold(hold);
+  REQUIRE(search.hold() == hold.get());
+  CHECK(search.current_plane().c == unheld.c);  // installing a hold keeps the plane shown
+  // Before any choice the first plane is chosen again, on the surface.
+  REQUIRE(search.use_visible_first_plane());
+  CHECK(hold->value(search.current_plane().c) == Approx(0.55).margin(1e-9));
+  const auto f = sps::make_test_function("gaussian", d);
+  for (int i = 0; i < 6; ++i) {
+    const sps::Plane& p = search.current_plane();
+    INFO("plane " << i);
+    CHECK(hold->value(p.c) == Approx(0.55).margin(1e-6));
+    CHECK(std::abs(weights(d).dot(p.u)) < 1e-6);
+    CHECK(std::abs(weights(d).dot(p.v)) < 1e-6);
+    CHECK(inside(p.c));
+    CHECK(inside(p.c + p.u));
+    CHECK(inside(p.c - p.u_neg_scale * p.u));
+    CHECK(inside(p.c + p.v));
+    CHECK(inside(p.c - p.v));
+    CHECK(p.u.norm() > 1e-3);
+    CHECK(p.v.norm() > 1e-3);
+    // The user picks on the plane as shown: every point on the surface.
+    const auto answer = sps::zoom_user(*f, p);
+    search.submit(hold->project(answer.chosen));
+  }
+  // Released: the next planes are the search's own again (the data stay).
+  const int points = search.data().point_count();
+  search.set_hold(nullptr);
+  CHECK(search.hold() == nullptr);
+  CHECK(search.data().point_count() == points);
+}
+
+TEST_CASE("without a hold the search is unchanged by the hold code", "[held][search]") {
+  const int d = 5;
+  sps::SearchOptions o;
+  o.dims = d;
+  o.seed = 3;
+  sps::PlaneSearch a(o);
+  sps::PlaneSearch b(o);
+  a.set_perceptual_scale(perceptual_scale(d));
+  b.set_perceptual_scale(perceptual_scale(d));
+  a.use_visible_first_plane();
+  b.use_visible_first_plane();
+  b.set_hold(nullptr);  // installing and releasing "no hold" changes nothing
+  const auto f = sps::make_test_function("gaussian", d);
+  for (int i = 0; i < 4; ++i) {
+    const sps::Plane& pa = a.current_plane();
+    const sps::Plane& pb = b.current_plane();
+    REQUIRE(pa.c == pb.c);
+    REQUIRE(pa.u == pb.u);
+    REQUIRE(pa.v == pb.v);
+    const auto answer = sps::zoom_user(*f, pa);
+    a.submit(answer.chosen, answer.comparisons);
+    b.submit(answer.chosen, answer.comparisons);
+  }
+}
