@@ -63,8 +63,8 @@ struct ZoomPolicy {
   // other's distance to the one in mind, so after two halvings the cells of the third and
   // fourth levels all look equally good and those clicks are guesses, both as the choice and
   // as preference data. Shrinking by 0.7 keeps every level's cells far enough apart for the
-  // click to say something: on the body benchmark (100 trials) the model's best estimate at
-  // plane 10 was 1.5 mm closer and the mean gap 1 mm lower than with 0.5 (docs/benchmarks.md).
+  // click to say something: on the body benchmark (200 trials) the mean gap at plane 10 was
+  // 0.7 mm lower than with 0.5 (docs/benchmarks.md).
   std::vector<double> factors{0.7, 0.8};
   // A click on a zoom level counts as "better than" only the cells of that grid that differ
   // from the clicked one by at least this much (mm, largest vertex distance): between near
