@@ -245,8 +245,10 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
     return next;
   };
   distinct = true;
-  // After the last level the grid is only shown while the optimizer runs: no check.
-  if (!distance_ || !check) return zoomed(policy_.factors.empty() ? 0.5 : policy_.factors.front());
+  // Without a distance hook: the paper's zoom. After the last level the grid is only shown
+  // while the optimizer runs: no check.
+  if (!distance_) return zoomed(kPaperZoomFactor);
+  if (!check) return zoomed(policy_.factors.empty() ? kPaperZoomFactor : policy_.factors.front());
   for (double factor : policy_.factors) {
     const sps::GridView next = zoomed(factor);
     // With holds the grid is judged first-order (decision_cells); the one taken is projected

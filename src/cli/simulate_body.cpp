@@ -126,6 +126,7 @@ int run_body_simulation(const ArgParser& args) {
                               "perceptual-btl",
                               "no-mean-centre",
                               "compare-mm",
+                              "zoom-factors",
                               "hold"};
   known.insert(search_option_names().begin(), search_option_names().end());
   args.reject_unknown(known);
@@ -167,6 +168,13 @@ int run_body_simulation(const ArgParser& args) {
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
   if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {
     throw ArgError("--compare-mm must be in [0, 10000)");
+  }
+  if (args.has("zoom-factors")) {
+    policy.factors = args.get_doubles("zoom-factors");
+    if (policy.factors.empty()) throw ArgError("--zoom-factors: give one or more factors");
+    for (double f : policy.factors) {
+      if (!(f > 0.0 && f < 1.0)) throw ArgError("--zoom-factors: each factor must be in (0, 1)");
+    }
   }
 
   const body::Model model = load_benchmark_model(args, components);

@@ -69,6 +69,7 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --no-mean-centre    centre planes on the best observed point, not the posterior-mean maximum
   --perceptual-btl S  with the perceptual scale: the BTL temperature (default 1; plain 0.01)
   --compare-mm D      zoom-level clicks count only over cells differing by >= D mm (default 40)
+  --zoom-factors F,.. zoom steps the session tries in order (default 0.7,0.8; the paper: 0.5)
 
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,

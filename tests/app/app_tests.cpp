@@ -524,6 +524,31 @@ TEST_CASE("with a perceptual distance no zoomed grid shows look-alikes", "[app][
   }
 }
 
+TEST_CASE("with a perceptual distance the zoom is gentler than the paper's halving", "[app][jnd]") {
+  // The default policy zooms by less than the paper's factor 2 (each level's cells stay far
+  // enough apart for a person's click to mean something); without a distance hook the
+  // session keeps the paper's zoom.
+  const app::ZoomPolicy defaults;
+  REQUIRE_FALSE(defaults.factors.empty());
+  CHECK(defaults.factors.front() > app::kPaperZoomFactor);
+  CHECK(defaults.factors.front() < 1.0);
+  for (const bool with_distance : {false, true}) {
+    app::Session session(small_settings());
+    // 1e6 mm per unit: every grid is clearly distinct, so the first factor is always taken.
+    if (with_distance) session.set_perceptual_distance(euclidean_mm(1e6));
+    const double expected = with_distance ? defaults.factors.front() : app::kPaperZoomFactor;
+    while (!session.submission_pending()) {
+      const int level = session.clicks_on_plane();
+      session.click({1, 1});
+      const auto& views = session.views();
+      REQUIRE(views.size() == static_cast<std::size_t>(level) + 2);
+      CHECK(views.back().spacing / views[views.size() - 2].spacing ==
+            Approx(expected).epsilon(1e-12));
+    }
+    CHECK(session.clicks_on_plane() == small_settings().zoom_levels);
+  }
+}
+
 TEST_CASE("zoom-level clicks count only over clearly different cells", "[app][jnd]") {
   const auto distance = euclidean_mm(1000.0);
   std::vector<std::size_t> totals;
@@ -531,6 +556,8 @@ TEST_CASE("zoom-level clicks count only over clearly different cells", "[app][jn
     app::Session session(small_settings());
     app::ZoomPolicy policy;
     policy.compare_mm = compare_mm;
+    // The paper's halving, so that the levels span the distances the thresholds below split.
+    policy.factors = {app::kPaperZoomFactor};
     session.set_perceptual_distance(distance, policy);
     while (!session.submission_pending()) session.click({2, 0});
     const auto sub = session.submission();
@@ -565,7 +592,8 @@ TEST_CASE("zoom-level clicks count only over clearly different cells", "[app][jn
 
 TEST_CASE("undo after a plane that ended early reopens it", "[app][jnd]") {
   app::Session session(small_settings());
-  session.set_perceptual_distance(euclidean_mm(60.0));
+  // Bodies that barely change (30 mm over the whole range): the plane ends before level 4.
+  session.set_perceptual_distance(euclidean_mm(30.0));
   int clicks = 0;
   while (!session.submission_pending()) {
     session.click({2, 2});

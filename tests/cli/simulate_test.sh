@@ -67,13 +67,24 @@ out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 -
 echo "$out"
 grep -q "holding the target's height, mass" <<<"$out" || fail "body --hold: no hold in the title"
 grep -q "cells projected" "$dir/hold.err" || fail "body --hold: no projection timing"
+# --zoom-factors: the paper's zoom (0.5) and the default (0.7, then 0.8) give different runs.
+zoom_gap() {
+  local table
+  table=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --quiet "$@")
+  awk '$1 == 2 { print $2 }' <<<"$table"
+}
+paper_zoom=$(zoom_gap --zoom-factors 0.5)
+default_zoom=$(zoom_gap)
+[ -n "$paper_zoom" ] && [ -n "$default_zoom" ] || fail "body --zoom-factors: no gap printed"
+differ "$default_zoom" "$paper_zoom" || fail "--zoom-factors 0.5 gives the default zoom's gap"
 
 # Bad input: a clear message and a non-zero exit, never a crash.
 for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2" "--bogus 1" \
             "--function rosenbrock --optimum 0.5" "--function body --user argmax" \
             "--function body --jnd-mm -1" "--function body --target-betas 1 2 3 4 5 6 7 8 9 10 11" \
             "--function body --model /nonexistent.npz" "--function body --grid 7" \
-            "--function body --hold weight"; do
+            "--function body --hold weight" "--function body --zoom-factors 0" \
+            "--function body --zoom-factors 0.7,1.5" "--function body --zoom-factors x"; do
   if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
   grep -qi "error" <<<"$err" || fail "no error message for: $args"
 done
