@@ -132,20 +132,28 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
   return best->x;
 }
 
-Eigen::VectorXd maximize_posterior_mean(const PreferenceModel& model,
-                                        const Eigen::VectorXd& fallback, int starts,
-                                        int max_iterations, int threads) {
+std::vector<int> best_observed_points(const PreferenceModel& model, int count) {
   const int n = model.point_count();
-  if (n == 0) return fallback;
-  const int d = model.dims();
+  if (n == 0) return {};
   Eigen::VectorXd means, variances;
   model.predict_batch(model.points(), means, variances, nullptr, nullptr);
   std::vector<int> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
-  const int count = std::max(1, std::min(starts, n));
+  count = std::max(1, std::min(count, n));
   std::partial_sort(order.begin(), order.begin() + count, order.end(), [&](int a, int b) {
     return means(a) > means(b) || (means(a) == means(b) && a < b);
   });
+  order.resize(static_cast<std::size_t>(count));
+  return order;
+}
+
+Eigen::VectorXd maximize_posterior_mean(const PreferenceModel& model,
+                                        const Eigen::VectorXd& fallback, int starts,
+                                        int max_iterations, int threads) {
+  const std::vector<int> order = best_observed_points(model, starts);
+  if (order.empty()) return fallback;
+  const int d = model.dims();
+  const int count = static_cast<int>(order.size());
   const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
   const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
   std::vector<MaximizeResult> results(static_cast<std::size_t>(count));

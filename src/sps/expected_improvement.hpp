@@ -3,6 +3,7 @@
 #pragma once
 
 #include <random>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -30,6 +31,10 @@ struct EiSearchSettings {
 Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, double best_mean,
                                               const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
                                               const EiSearchSettings& settings);
+
+// The indices of the (at most) `count` observed points with the largest posterior means, best
+// first (ties by index): the starts of the searches for the posterior-mean maximum.
+std::vector<int> best_observed_points(const PreferenceModel& model, int count);
 
 // argmax of the posterior mean over [0,1]^d by local searches from the observed points with
 // the largest means (the model's best estimate, which may lie between observations). Returns

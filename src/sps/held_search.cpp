@@ -190,21 +190,10 @@ Eigen::VectorXd maximize_posterior_mean_on_tangent(const PreferenceModel& model,
                                                    const Eigen::VectorXd& anchor,
                                                    const Eigen::MatrixXd& projector, int starts,
                                                    int threads) {
-  const int n = model.point_count();
-  if (n == 0) return anchor;
-  Eigen::VectorXd means, variances;
-  model.predict_batch(model.points(), means, variances, nullptr, nullptr);
-  std::vector<int> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  const int count = std::max(1, std::min(starts, n));
-  std::partial_sort(order.begin(), order.begin() + count, order.end(), [&](int a, int b) {
-    return means(a) > means(b) || (means(a) == means(b) && a < b);
-  });
+  const std::vector<int> order = best_observed_points(model, starts);
+  if (order.empty()) return anchor;
   std::vector<Eigen::VectorXd> from{anchor};
-  for (int i = 0; i < count; ++i) {
-    from.push_back(
-        on_tangent(anchor, projector, model.points().col(order[static_cast<std::size_t>(i)])));
-  }
+  for (const int i : order) from.push_back(on_tangent(anchor, projector, model.points().col(i)));
   return maximize_on_tangent(
       [&](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
         double mean = 0.0, variance = 0.0;
