@@ -221,37 +221,12 @@ Eigen::VectorXd best_tangent_v(const PreferenceModel& model, const Plane& base,
     if (u.squaredNorm() > 0.0) dir -= (dir.dot(u) / u.squaredNorm()) * u;
     starts.push_back(uniform(rng) * fit_both_sides(base.c, 10.0 * dir));
   }
-  constexpr double kLattice[] = {-1.0, -0.5, 0.0, 0.5, 1.0};
-  struct LatticePoint {
-    double a, b;
-  };
-  std::vector<LatticePoint> lattice;
-  for (double s : kLattice) {
-    for (double t : kLattice) {
-      if (s != t) lattice.push_back({0.5 * (s + t), 0.5 * (s - t)});
-    }
-  }
-  const double inv_count = 1.0 / 25.0;
   std::vector<MaximizeResult> results(static_cast<std::size_t>(restarts));
   parallel_for(restarts, settings.threads, [&](int r) {
-    Eigen::MatrixXd xs(d, static_cast<Eigen::Index>(lattice.size()));
-    Eigen::MatrixXd ei_grad;
+    PlaneEiObjective objective(model, base, best_mean);
+    Eigen::VectorXd g;
     const Objective fn = [&](const Eigen::VectorXd& w, Eigen::VectorXd& grad) {
-      const Eigen::VectorXd v = projector * w;
-      for (std::size_t j = 0; j < lattice.size(); ++j) {
-        const double a = lattice[j].a >= 0.0 ? lattice[j].a : lattice[j].a * base.u_neg_scale;
-        xs.col(static_cast<Eigen::Index>(j)) = base.c + a * u + lattice[j].b * v;
-      }
-      const Eigen::VectorXd ei = expected_improvement_batch(model, xs, best_mean, &ei_grad);
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(d);
-      for (std::size_t j = 0; j < lattice.size(); ++j) {
-        g += lattice[j].b * ei_grad.col(static_cast<Eigen::Index>(j));
-      }
-      double value = ei.sum() * inv_count;
-      g *= inv_count;
-      const double uv = u.dot(v);  // soft orthogonality: -(u.v)^2
-      value -= uv * uv;
-      g -= 2.0 * uv * u;
+      const double value = objective(projector * w, g);
       grad = projector * g;
       return value;
     };

@@ -86,6 +86,39 @@ double plane_acquisition(const PreferenceModel& model, const Plane& plane, doubl
   return total / static_cast<double>(kLattice.size() * kLattice.size());
 }
 
+PlaneEiObjective::PlaneEiObjective(const PreferenceModel& model, const Plane& base,
+                                   double best_mean)
+    : model_(model), base_(base), best_mean_(best_mean) {
+  // Lattice points depending on v (b != 0); the others are constant in v.
+  for (double s : kLattice) {
+    for (double t : kLattice) {
+      if (s != t) lattice_.push_back({0.5 * (s + t), 0.5 * (s - t)});
+    }
+  }
+  xs_.resize(base.c.size(), static_cast<Eigen::Index>(lattice_.size()));
+}
+
+double PlaneEiObjective::operator()(const Eigen::VectorXd& v, Eigen::VectorXd& grad) {
+  const Eigen::VectorXd& u = base_.u;
+  for (std::size_t j = 0; j < lattice_.size(); ++j) {
+    const double a = lattice_[j].a >= 0.0 ? lattice_[j].a : lattice_[j].a * base_.u_neg_scale;
+    xs_.col(static_cast<Eigen::Index>(j)) = base_.c + a * u + lattice_[j].b * v;
+  }
+  const Eigen::VectorXd ei = expected_improvement_batch(model_, xs_, best_mean_, &ei_grad_);
+  grad.setZero(base_.c.size());
+  for (std::size_t j = 0; j < lattice_.size(); ++j) {
+    grad += lattice_[j].b * ei_grad_.col(static_cast<Eigen::Index>(j));
+  }
+  const double inv_count = 1.0 / static_cast<double>(kLattice.size() * kLattice.size());
+  double value = ei.sum() * inv_count;
+  grad *= inv_count;
+  // Soft orthogonality: -(u.v)^2.
+  const double uv = u.dot(v);
+  value -= uv * uv;
+  grad -= 2.0 * uv * u;
+  return value;
+}
+
 Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
                 const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,
                 const PlaneSearchSettings& settings) {
@@ -113,39 +146,11 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
     starts.push_back(uniform(rng) * fit_symmetric(x_plus, 10.0 * dir));
   }
 
-  // Lattice points depending on v (b != 0); the others are constant in v.
-  struct LatticePoint {
-    double a, b;
-  };
-  std::vector<LatticePoint> lattice;
-  for (double s : kLattice) {
-    for (double t : kLattice) {
-      if (s != t) lattice.push_back({0.5 * (s + t), 0.5 * (s - t)});
-    }
-  }
-  const double inv_count = 1.0 / static_cast<double>(kLattice.size() * kLattice.size());
-
   std::vector<MaximizeResult> results(static_cast<std::size_t>(restarts));
   parallel_for(restarts, settings.threads, [&](int r) {
-    Eigen::MatrixXd xs(d, static_cast<Eigen::Index>(lattice.size()));
-    Eigen::MatrixXd ei_grad;
+    PlaneEiObjective objective(model, base, best_mean);
     const Objective fn = [&](const Eigen::VectorXd& v, Eigen::VectorXd& grad) {
-      for (std::size_t j = 0; j < lattice.size(); ++j) {
-        const double a = lattice[j].a >= 0.0 ? lattice[j].a : lattice[j].a * base.u_neg_scale;
-        xs.col(static_cast<Eigen::Index>(j)) = base.c + a * u + lattice[j].b * v;
-      }
-      const Eigen::VectorXd ei = expected_improvement_batch(model, xs, best_mean, &ei_grad);
-      grad.setZero(d);
-      for (std::size_t j = 0; j < lattice.size(); ++j) {
-        grad += lattice[j].b * ei_grad.col(static_cast<Eigen::Index>(j));
-      }
-      double value = ei.sum() * inv_count;
-      grad *= inv_count;
-      // Soft orthogonality: -(u.v)^2.
-      const double uv = u.dot(v);
-      value -= uv * uv;
-      grad -= 2.0 * uv * u;
-      return value;
+      return objective(v, grad);
     };
     results[static_cast<std::size_t>(r)] = maximize_bounded(
         fn, starts[static_cast<std::size_t>(r)], -bound, bound, settings.max_iterations, 1e-10);

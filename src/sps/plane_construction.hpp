@@ -4,6 +4,7 @@
 #pragma once
 
 #include <random>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -28,6 +29,25 @@ void correct_opposite_vertex(Plane& plane);
 
 // The plane acquisition: mean EI over the 5x5 lattice (s, t in {-1,-.5,0,.5,1}).
 double plane_acquisition(const PreferenceModel& model, const Plane& plane, double best_mean);
+
+// The objective of the search for v given c and u (sps_plane, and the held search on a
+// tangent plane): the plane's mean EI over the 5x5 lattice minus the soft-orthogonality
+// penalty (u.v)^2, with its gradient in v. Holds scratch matrices: one object per thread.
+class PlaneEiObjective {
+ public:
+  PlaneEiObjective(const PreferenceModel& model, const Plane& base, double best_mean);
+  double operator()(const Eigen::VectorXd& v, Eigen::VectorXd& grad);
+
+ private:
+  struct LatticePoint {
+    double a, b;  // the point c + a u + b v (a < 0 scaled by the plane's u_neg_scale)
+  };
+  const PreferenceModel& model_;
+  const Plane& base_;
+  double best_mean_;
+  std::vector<LatticePoint> lattice_;  // only the points that depend on v (b != 0)
+  Eigen::MatrixXd xs_, ei_grad_;
+};
 
 struct PlaneSearchSettings {
   int restarts = 10;
