@@ -119,6 +119,9 @@ class DesignSpace {
   // measure (the session then zooms by the paper's fixed factor).
   virtual PairwiseDistance perceptual_distance() const { return {}; }
   virtual Eigen::VectorXd perceptual_scale() const { return {}; }
+  // Where designs typically lie in the search box and how far they spread (a body model's
+  // population); empty where unknown.
+  virtual sps::Population population() const { return {}; }
 
   // Measurement targets and holds (issue 13). Names that may be held or solved for (a
   // body's "height", "mass", ...; none for a photo).

@@ -446,6 +446,7 @@ void GalleryController::install_perception() {
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
       session_->set_perceptual_scale(scale);
+      session_->set_population(space_->population());
     }
   }
   session_->set_perceptual_distance(space_->perceptual_distance());

@@ -72,6 +72,7 @@ int run(int argc, char** argv) {
   const Eigen::VectorXd scale = space->perceptual_scale();
   if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
     session.set_perceptual_scale(scale);
+    session.set_population(space->population());
   }
   session.set_perceptual_distance(space->perceptual_distance());
   if (const auto targets = args.get_all("target"); !targets.empty()) {

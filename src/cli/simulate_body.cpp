@@ -18,6 +18,7 @@
 #include "body/shape_distance.hpp"
 #include "cli/simulate_common.hpp"
 #include "spaces/body_holds.hpp"
+#include "spaces/body_space.hpp"
 
 namespace cli {
 
@@ -127,7 +128,9 @@ int run_body_simulation(const ArgParser& args) {
                               "no-mean-centre",
                               "compare-mm",
                               "zoom-factors",
-                              "hold"};
+                              "hold",
+                              "no-target-model",
+                              "choice-temperature-mm"};
   known.insert(search_option_names().begin(), search_option_names().end());
   args.reject_unknown(known);
   const std::string user = args.get_or("user", "zoom-jnd");
@@ -165,6 +168,12 @@ int run_body_simulation(const ArgParser& args) {
   if (!(options.perceptual_btl_scale >= 1e-8 && options.perceptual_btl_scale <= 1e3)) {
     throw ArgError("--perceptual-btl must be in [1e-8, 1000]");
   }
+  options.choice_temperature_mm =
+      args.get_double("choice-temperature-mm", options.choice_temperature_mm);
+  if (!(options.choice_temperature_mm >= 0.01 && options.choice_temperature_mm <= 1e3)) {
+    throw ArgError("--choice-temperature-mm must be in [0.01, 1000]");
+  }
+  const bool target_model = !args.has("no-target-model");
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
   if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {
     throw ArgError("--compare-mm must be in [0, 10000)");
@@ -232,7 +241,10 @@ int run_body_simulation(const ArgParser& args) {
       session.set_constraint_projector(std::make_shared<TimedProjector>(
           spaces::make_body_holds(hold_model, holds, session.current_best()), clock));
     }
-    if (perceptual_scale) session.set_perceptual_scale(distance.direction_rms_mm());
+    if (perceptual_scale) {
+      session.set_perceptual_scale(distance.direction_rms_mm());
+      if (target_model) session.set_population(spaces::body_population(k));
+    }
     if (adapt) session.set_perceptual_distance(pairwise, policy);
     std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
     double best = std::numeric_limits<double>::infinity();
@@ -262,7 +274,8 @@ int run_body_simulation(const ArgParser& args) {
   title << "# " << sps::method_name(options.method) << " on body (" << model.name << ", " << k
         << " components), user zoom-jnd (" << grid << "x" << grid << ", " << levels
         << " levels, JND " << jnd_mm << " mm" << (adapt ? "" : ", no zoom adaptation")
-        << (perceptual_scale ? "" : ", no perceptual scale") << "), target "
+        << (perceptual_scale ? "" : ", no perceptual scale")
+        << (perceptual_scale && !target_model ? ", no target model" : "") << "), target "
         << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "
         << seed << "-" << (seed + trials - 1) << "; gap = RMS vertex distance (mm) of the best "
         << "body so far";

@@ -16,6 +16,10 @@ class BodyRenderer;
 
 namespace spaces {
 
+// The population of a body model's shape space in search coordinates (standardized shape
+// coefficients: N(0, 1) each), for sps::SearchOptions::population.
+sps::Population body_population(int components);
+
 class BodySpace : public app::DesignSpace {
  public:
   // `source`: the .npz it came from ("" = the embedded default model).
@@ -57,6 +61,7 @@ class BodySpace : public app::DesignSpace {
 
   app::PairwiseDistance perceptual_distance() const override;
   Eigen::VectorXd perceptual_scale() const override;
+  sps::Population population() const override;
 
   const body::Model& model() const { return model_; }
 

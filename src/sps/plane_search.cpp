@@ -132,6 +132,11 @@ void validate_options(const SearchOptions& o) {
   require(in(m.prior_log_variance, 1e-8, 100.0), "prior_log_variance must lie in [1e-8, 100]");
   require(in(m.btl_scale, 1e-8, 1e3), "btl_scale must lie in [1e-8, 1000]");
   require(in(o.perceptual_btl_scale, 1e-8, 1e3), "perceptual_btl_scale must lie in [1e-8, 1000]");
+  require(in(o.choice_temperature_mm, 1e-6, 1e4),
+          "choice_temperature_mm must lie in [1e-6, 10000]");
+  require(o.population.empty() ||
+              (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
+          "the population mean and SD need one entry per dimension");
   require(in(m.noise_variance, 1e-12, 1.0), "noise_variance must lie in [1e-12, 1]");
   require(m.max_hyper_iterations >= 0 && m.max_hyper_iterations <= 100000,
           "max_hyper_iterations must be 0-100000");
@@ -178,6 +183,19 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
   plane_ = first_plane(options_.dims, rng_);
   const Eigen::VectorXd scale = options_.perceptual_scale;
   set_perceptual_scale(scale);
+  const Population population = options_.population;
+  set_population(population);
+}
+
+void PlaneSearch::set_population(const Population& population) {
+  if (!population.empty()) {
+    TargetModel probe;
+    probe.scale = Eigen::VectorXd::Ones(options_.dims);
+    probe.population = population;
+    probe.temperature_mm = options_.choice_temperature_mm;
+    validate_target_model(probe, options_.dims);
+  }
+  options_.population = population;
 }
 
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
@@ -369,6 +387,12 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
       x_plus = hold_->project(
           maximize_posterior_mean_on_tangent(*model_, x_plus, projector, 4, options_.threads));
     }
+  } else if (mean_centre && !options_.population.empty()) {
+    TargetModel target;
+    target.scale = options_.perceptual_scale;
+    target.population = options_.population;
+    target.temperature_mm = options_.choice_temperature_mm;
+    x_plus = estimate_target(data_, target, x_plus);
   } else if (mean_centre) {
     x_plus = maximize_posterior_mean(*model_, x_plus, 4, 60, options_.threads);
   }
@@ -490,6 +514,11 @@ std::string PlaneSearch::to_json() const {
     j["options"]["perceptual_btl_scale"] = options_.perceptual_btl_scale;
     j["options"]["plain_btl_scale"] = plain_btl_scale_;
   }
+  if (!options_.population.empty()) {
+    j["options"]["population_mean"] = vec_to_json(options_.population.mean);
+    j["options"]["population_sd"] = vec_to_json(options_.population.sd);
+    j["options"]["choice_temperature_mm"] = options_.choice_temperature_mm;
+  }
   j["rng"] = rng_state();
   json points = json::array();
   for (Eigen::Index i = 0; i < data_.points().cols(); ++i) {
@@ -586,6 +615,18 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
               : ms.btl_scale;
       if (o.contains("plain_btl_scale")) {
         ms.btl_scale = double_from_json(o.at("plain_btl_scale"), "plain_btl_scale", 1e-8, 1e3);
+      }
+    }
+    // Files from before the target estimate have no population: their planes stay centred
+    // on the posterior-mean maximum.
+    if (o.contains("population_mean") || o.contains("population_sd")) {
+      options.population.mean =
+          vec_from_json(o.at("population_mean"), "population_mean", options.dims, 0.0, 1.0);
+      options.population.sd =
+          vec_from_json(o.at("population_sd"), "population_sd", options.dims, 1e-9, 1e3);
+      if (o.contains("choice_temperature_mm")) {
+        options.choice_temperature_mm =
+            double_from_json(o.at("choice_temperature_mm"), "choice_temperature_mm", 1e-6, 1e4);
       }
     }
     PlaneSearch search(options);

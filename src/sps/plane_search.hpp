@@ -16,6 +16,7 @@
 #include "sps/plane.hpp"
 #include "sps/preference_data.hpp"
 #include "sps/preference_model.hpp"
+#include "sps/target_estimate.hpp"
 
 namespace sps {
 
@@ -70,6 +71,15 @@ struct SearchOptions {
   // and a soft likelihood (the data as weak evidence that many clicks average out) fits them;
   // the sharp 0.01 treats every click as certain and the model chases the noise.
   double perceptual_btl_scale = 1.0;
+  // With a perceptual scale and centre_on_mean_maximum: where the designs of the space
+  // typically lie (a body model's population; empty: unknown). When set, the plane is centred
+  // on the estimate of the design the person has in mind (sps/target_estimate.hpp: an
+  // ideal-point model of their choices with this prior) instead of the posterior-mean
+  // maximum, which with a person's guesses between look-alike cells wanders along the
+  // directions the clicks never resolved (body benchmark: mean gap at plane 10 down by about
+  // 1.8 mm over 200 trials, docs/benchmarks.md).
+  Population population;
+  double choice_temperature_mm = 3.0;  // TargetModel::temperature_mm
 };
 
 // The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane
@@ -148,6 +158,9 @@ class PlaneSearch {
   // visible_first_plane() and returns true (start_over() then starts from it too); otherwise
   // false and nothing changes.
   bool use_visible_first_plane();
+  // Sets options().population (empty: none) for the next submissions. Throws
+  // std::invalid_argument on wrong sizes, a mean outside [0, 1] or a non-positive SD.
+  void set_population(const Population& population);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most

@@ -1,0 +1,106 @@
+#include "sps/target_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sps/bounded_maximizer.hpp"
+
+namespace sps {
+
+namespace {
+
+// Keeps the distance differentiable where t meets a data point (mm^2).
+constexpr double kSmoothingMm2 = 1e-6;
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("target model: " + what);
+}
+
+}  // namespace
+
+void validate_target_model(const TargetModel& model, int dims) {
+  const auto n = static_cast<Eigen::Index>(dims);
+  require(model.scale.size() == n && model.population.mean.size() == n &&
+              model.population.sd.size() == n,
+          "the scale, population mean and SD need " + std::to_string(dims) + " entries each");
+  require(model.scale.allFinite() && (model.scale.array() > 0.0).all(),
+          "every scale entry must be positive and finite");
+  require(model.population.sd.allFinite() && (model.population.sd.array() > 0.0).all(),
+          "every population SD must be positive and finite");
+  require(model.population.mean.allFinite() && (model.population.mean.array() >= 0.0).all() &&
+              (model.population.mean.array() <= 1.0).all(),
+          "the population mean must lie in [0, 1]");
+  require(std::isfinite(model.temperature_mm) && model.temperature_mm > 0.0 &&
+              model.temperature_mm <= 1e4,
+          "the choice temperature must lie in (0, 10000] mm");
+}
+
+double target_log_posterior(const PreferenceData& data, const TargetModel& model,
+                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+  const Eigen::MatrixXd& points = data.points();
+  const Eigen::Index n = points.cols();
+  const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
+  const double inv_temp = 1.0 / model.temperature_mm;
+  // Distances of every point to t, and their gradients in t.
+  Eigen::VectorXd distance(n);
+  Eigen::MatrixXd d_distance(t.size(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::VectorXd diff = points.col(i) - t;
+    const Eigen::VectorXd weighted = s2.cwiseProduct(diff);
+    distance(i) = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
+    d_distance.col(i) = -weighted / distance(i);
+  }
+  const Eigen::VectorXd z = (t - model.population.mean).cwiseQuotient(model.population.sd);
+  double value = -0.5 * z.squaredNorm();
+  if (gradient != nullptr) *gradient = -z.cwiseQuotient(model.population.sd);
+  std::vector<int> members;
+  std::vector<double> weight;
+  for (const Preference& p : data.preferences()) {
+    members.assign(1, p.chosen);
+    members.insert(members.end(), p.others.begin(), p.others.end());
+    double top = -std::numeric_limits<double>::infinity();
+    for (int j : members) top = std::max(top, -distance(j) * inv_temp);
+    weight.resize(members.size());
+    double sum = 0.0;
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      weight[m] = std::exp(-distance(members[m]) * inv_temp - top);
+      sum += weight[m];
+    }
+    value += -distance(p.chosen) * inv_temp - (top + std::log(sum));
+    if (gradient != nullptr) {
+      *gradient -= inv_temp * d_distance.col(p.chosen);
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        *gradient += (inv_temp * weight[m] / sum) * d_distance.col(members[m]);
+      }
+    }
+  }
+  return value;
+}
+
+Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& model,
+                                const Eigen::VectorXd& start) {
+  validate_target_model(model, data.dims());
+  const Eigen::Index d = data.dims();
+  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
+  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
+  const Eigen::VectorXd typical = model.population.mean.cwiseMax(0.0).cwiseMin(1.0);
+  if (data.preference_count() == 0) return typical;
+  const Objective objective = [&](const Eigen::VectorXd& t, Eigen::VectorXd& gradient) {
+    return target_log_posterior(data, model, t, &gradient);
+  };
+  MaximizeResult best;
+  best.value = -std::numeric_limits<double>::infinity();
+  for (const Eigen::VectorXd& from :
+       {Eigen::VectorXd(start.cwiseMax(0.0).cwiseMin(1.0)), typical}) {
+    if (from.size() != d || !from.allFinite()) continue;
+    const MaximizeResult result = maximize_bounded(objective, from, lower, upper, 200, 1e-8);
+    if (result.value > best.value) best = result;
+  }
+  return best.x.size() == d ? best.x : typical;
+}
+
+}  // namespace sps

@@ -1,0 +1,50 @@
+// Where the design the person has in mind probably is, estimated from their choices with an
+// ideal-point model of choice (Coombs' unfolding): the person prefers what looks closer to
+// the one design in mind, so a choice among shown points is a softmax of minus their
+// perceptual distances to it. With a population prior on that design (a body model's shape
+// coefficients are standardized: N(0, 1) over the people it was built from) the MAP estimate
+// averages many guesses between look-alike cells and falls back on typical bodies along
+// directions the choices never resolved, where the GP's posterior-mean maximum wanders with
+// the guesses (docs/benchmarks.md, issue 9).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "sps/preference_data.hpp"
+
+namespace sps {
+
+// Where designs typically lie in the search box and how far they spread, per coordinate
+// (a body model: mean 0.5, SD 1/6, as beta = 6x - 3 is N(0, 1)).
+struct Population {
+  Eigen::VectorXd mean;
+  Eigen::VectorXd sd;
+  bool empty() const { return mean.size() == 0; }
+};
+
+struct TargetModel {
+  Eigen::VectorXd scale;  // perceptual scale: mm of visible change per unit of each coordinate
+  Population population;
+  // Softmax temperature of a choice (mm): a cell 3 mm closer to the design in mind is e times
+  // as likely to be chosen. 1 and 6 mm measured worse than 3 on the body benchmark.
+  double temperature_mm = 3.0;
+};
+
+// Throws std::invalid_argument naming the first problem: sizes differ from `dims`, a
+// non-finite or non-positive scale or SD, a mean outside [0, 1], a temperature outside
+// (0, 1e4].
+void validate_target_model(const TargetModel& model, int dims);
+
+// Log posterior (up to a constant) of the design in mind being at t, with its gradient:
+// the population prior plus, for every preference, log softmax(-distance / temperature) of
+// the chosen point among the compared ones; distance is sqrt(sum_k (scale_k (x_k - t_k))^2)
+// (smoothed at 0).
+double target_log_posterior(const PreferenceData& data, const TargetModel& model,
+                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient = nullptr);
+
+// The MAP estimate inside [0,1]^d, from `start` and from the population mean (the better of
+// the two). Without data: the population mean (clamped into the box).
+Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& model,
+                                const Eigen::VectorXd& start);
+
+}  // namespace sps

@@ -1,0 +1,171 @@
+// The estimate of the design in mind (sps/target_estimate.hpp): its gradient, that it finds a
+// target from a careful chooser's clicks, its prior alone, its validation, and its use as the
+// plane centre (saved with the search).
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "sps/plane_search.hpp"
+#include "sps/target_estimate.hpp"
+
+namespace {
+
+sps::TargetModel model_for(const Eigen::VectorXd& scale) {
+  sps::TargetModel m;
+  m.scale = scale;
+  m.population.mean = Eigen::VectorXd::Constant(scale.size(), 0.5);
+  m.population.sd = Eigen::VectorXd::Constant(scale.size(), 1.0 / 6.0);
+  return m;
+}
+
+double distance_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                   const Eigen::VectorXd& scale) {
+  return (a - b).cwiseProduct(scale).norm();
+}
+
+// Grids of random points around `around`; the chooser takes the one nearest the target (in
+// mm) over the others, as a person with the target in mind and a sharp eye would.
+sps::PreferenceData careful_choices(const Eigen::VectorXd& target, const Eigen::VectorXd& scale,
+                                    int grids, std::mt19937_64& rng) {
+  const Eigen::Index d = target.size();
+  sps::PreferenceData data(static_cast<int>(d));
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int g = 0; g < grids; ++g) {
+    std::vector<Eigen::VectorXd> shown;
+    for (int k = 0; k < 9; ++k) {
+      Eigen::VectorXd x(d);
+      for (Eigen::Index i = 0; i < d; ++i) x(i) = uniform(rng);
+      shown.push_back(x);
+    }
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < shown.size(); ++k) {
+      if (distance_mm(shown[k], target, scale) < distance_mm(shown[best], target, scale)) best = k;
+    }
+    std::vector<Eigen::VectorXd> others;
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      if (k != best) others.push_back(shown[k]);
+    }
+    data.add_preference(shown[best], others);
+  }
+  return data;
+}
+
+}  // namespace
+
+TEST_CASE("the target log posterior's gradient matches finite differences", "[target]") {
+  const Eigen::Vector4d scale(300.0, 60.0, 30.0, 10.0);
+  std::mt19937_64 rng(7);
+  const sps::PreferenceData data =
+      careful_choices(Eigen::Vector4d(0.3, 0.6, 0.5, 0.8), scale, 12, rng);
+  const sps::TargetModel m = model_for(scale);
+  for (const Eigen::Vector4d& t :
+       {Eigen::Vector4d(0.5, 0.5, 0.5, 0.5), Eigen::Vector4d(0.2, 0.7, 0.4, 0.9)}) {
+    Eigen::VectorXd grad;
+    sps::target_log_posterior(data, m, t, &grad);
+    for (Eigen::Index k = 0; k < 4; ++k) {
+      const double h = 1e-6;
+      const Eigen::VectorXd step = h * Eigen::Vector4d::Unit(k);
+      const double fd = (sps::target_log_posterior(data, m, t + step) -
+                         sps::target_log_posterior(data, m, t - step)) /
+                        (2.0 * h);
+      INFO("coordinate " << k);
+      CHECK(grad(k) == Approx(fd).epsilon(1e-4).margin(1e-4));
+    }
+  }
+}
+
+TEST_CASE("the target estimate finds the design a careful chooser has in mind", "[target]") {
+  const Eigen::Vector4d scale(300.0, 60.0, 30.0, 10.0);
+  const Eigen::Vector4d target(0.35, 0.62, 0.45, 0.55);
+  std::mt19937_64 rng(11);
+  const sps::PreferenceData data = careful_choices(target, scale, 60, rng);
+  const sps::TargetModel m = model_for(scale);
+  const Eigen::VectorXd estimate = sps::estimate_target(data, m, Eigen::Vector4d::Constant(0.5));
+  const double before = distance_mm(m.population.mean, target, scale);
+  const double after = distance_mm(estimate, target, scale);
+  INFO("estimate " << estimate.transpose() << ", " << after << " mm from the target, the "
+                   << "population mean " << before << " mm");
+  CHECK(after < 0.3 * before);
+  CHECK(after < 10.0);
+  CHECK((estimate.array() >= 0.0).all());
+  CHECK((estimate.array() <= 1.0).all());
+}
+
+TEST_CASE("without choices the target estimate is the population mean", "[target]") {
+  sps::TargetModel m = model_for(Eigen::Vector3d(100.0, 50.0, 20.0));
+  m.population.mean = Eigen::Vector3d(0.4, 0.5, 0.7);
+  const sps::PreferenceData empty(3);
+  CHECK(sps::estimate_target(empty, m, Eigen::Vector3d(0.9, 0.1, 0.2)).isApprox(m.population.mean));
+}
+
+TEST_CASE("a malformed target model is refused with a message", "[target]") {
+  const sps::TargetModel good = model_for(Eigen::Vector3d(100.0, 50.0, 20.0));
+  CHECK_NOTHROW(sps::validate_target_model(good, 3));
+  CHECK_THROWS_AS(sps::validate_target_model(good, 4), std::invalid_argument);
+  sps::TargetModel bad = good;
+  bad.population.sd(1) = 0.0;
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("SD"));
+  bad = good;
+  bad.population.mean(2) = std::nan("");
+  CHECK_THROWS_AS(sps::validate_target_model(bad, 3), std::invalid_argument);
+  bad = good;
+  bad.scale(0) = -1.0;
+  CHECK_THROWS_AS(sps::validate_target_model(bad, 3), std::invalid_argument);
+  bad = good;
+  bad.temperature_mm = 0.0;
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("temperature"));
+}
+
+TEST_CASE("with a population the plane is centred on the target estimate", "[target][search]") {
+  // Random planes keep c = x+ exactly (SPS planes may shift it to keep the plane in the box).
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = 5;
+  o.method = sps::Method::kSpsRandom;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
+  sps::PlaneSearch search(o);
+  const sps::TargetModel m = model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  const Eigen::Vector3d goal(0.3, 0.6, 0.45);
+  for (int it = 0; it < 4; ++it) {
+    const sps::Plane& p = search.current_plane();
+    Eigen::VectorXd best = p.c;
+    for (double s = -1.0; s <= 1.0; s += 0.5) {
+      for (double t = -1.0; t <= 1.0; t += 0.5) {
+        const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
+        if (distance_mm(x, goal, o.perceptual_scale) < distance_mm(best, goal, o.perceptual_scale))
+          best = x;
+      }
+    }
+    search.submit(best);
+    // The centre maximizes the target posterior: no better value nearby.
+    const Eigen::VectorXd c = search.current_plane().c;
+    Eigen::VectorXd grad;
+    const double at_c = sps::target_log_posterior(search.data(), m, c, &grad);
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      for (double h : {-1e-3, 1e-3}) {
+        const Eigen::VectorXd nearby =
+            (c + h * Eigen::Vector3d::Unit(k)).cwiseMax(0.0).cwiseMin(1.0);
+        CHECK(sps::target_log_posterior(search.data(), m, nearby) <= at_c + 1e-9);
+      }
+    }
+  }
+  // Saved with the search: the restored one proposes the same plane.
+  auto restored = sps::PlaneSearch::from_json(search.to_json());
+  REQUIRE(restored.options().population.mean.size() == 3);
+  CHECK(restored.options().population.sd.isApprox(m.population.sd));
+  CHECK(restored.options().choice_temperature_mm == Approx(3.0));
+  auto a = search;
+  a.submit(a.current_plane().c);
+  restored.submit(restored.current_plane().c);
+  CHECK((a.current_plane().c - restored.current_plane().c).norm() < 1e-9);
+  // Validated.
+  CHECK_THROWS_AS(search.set_population({Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(0.1, 0.1)}),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(search.set_population({Eigen::Vector3d(0.5, 1.5, 0.5), m.population.sd}),
+                  std::invalid_argument);
+}
