@@ -378,20 +378,25 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   }
   const bool mean_centre = !set_directly && options_.centre_on_mean_maximum &&
                            options_.perceptual_scale.size() == options_.dims;
+  TargetModel target;
+  if (mean_centre && !options_.population.empty()) {
+    target.scale = options_.perceptual_scale;
+    target.population = options_.population;
+    target.temperature_mm = options_.choice_temperature_mm;
+  }
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
-    // tangent plane through the best point, then moved onto the surface).
+    // tangent plane through the best point, then moved onto the surface; the estimate of the
+    // design in mind, made from choices that all lie on the surface, is moved onto it).
     x_plus = hold_->project(x_plus);
-    if (mean_centre) {
+    if (target.scale.size() > 0) {
+      x_plus = hold_->project(estimate_target(data_, target, x_plus));
+    } else if (mean_centre) {
       const Eigen::MatrixXd projector = tangent_projector(hold_->normals(x_plus), options_.dims);
       x_plus = hold_->project(
           maximize_posterior_mean_on_tangent(*model_, x_plus, projector, 4, options_.threads));
     }
-  } else if (mean_centre && !options_.population.empty()) {
-    TargetModel target;
-    target.scale = options_.perceptual_scale;
-    target.population = options_.population;
-    target.temperature_mm = options_.choice_temperature_mm;
+  } else if (target.scale.size() > 0) {
     x_plus = estimate_target(data_, target, x_plus);
   } else if (mean_centre) {
     x_plus = maximize_posterior_mean(*model_, x_plus, 4, 60, options_.threads);
