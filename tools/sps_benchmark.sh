@@ -6,8 +6,8 @@
 #
 # Then the body benchmark (`simulate --function body`: the default model, 10 components, 3x3
 # grid, 4 levels, a simulated person with a 5 mm just-noticeable difference, random targets,
-# 15 planes) for SPS as the window runs it, SPS without the perceptual hooks, random planes
-# and SLS.
+# 15 planes) for SPS as the window runs it, SPS centred on the posterior-mean maximum, SPS
+# without the perceptual hooks, random planes and SLS.
 #
 #   bash tools/sps_benchmark.sh            # 50 trials, as the paper (about 15-25 minutes)
 #   TRIALS=10 bash tools/sps_benchmark.sh  # a quicker look
@@ -51,12 +51,15 @@ for s in "${settings[@]}"; do
 done
 fi
 # The body benchmark. "sps-plain": the session without the body's perceptual distance and
-# scale (fixed factor-2 zoom, the paper's planes).
-for variant in sps sps-plain sps-random sls; do
+# scale (fixed factor-2 zoom, the paper's planes); "sps-mean-centre": planes centred on the
+# posterior-mean maximum instead of the estimate of the body in mind.
+for variant in sps sps-mean-centre sps-plain sps-random sls; do
   name="body-10c_${variant}_zoom-jnd"
   method=${variant%-plain}
+  method=${method%-mean-centre}
   extra=()
   [ "$variant" = sps-plain ] && extra=(--no-adapt --no-perceptual-scale)
+  [ "$variant" = sps-mean-centre ] && extra=(--no-target-model)
   echo "== $name"
   "$BIN" simulate --function body --components 10 --method "$method" --user zoom-jnd \
     --jnd-mm 5 --grid 3 --levels 4 --trials "$BODY_TRIALS" --iterations 15 --seed 1000 --quiet \
