@@ -352,12 +352,11 @@ def body_section(results, trials):
     p("0.8 mm with the template change alone); the 200-trial figures above are steadier, and")
     p("their medians (8.87 and 9.04 mm) are the ones the 10 mm target is judged by here.")
     p()
-    p("Latency re-checked after these changes (2026-11-24, while other engineers used the two")
-    p("cores, load average 4.5-5): Rosenbrock 20-D, argmax user, 50 trials: the same gaps as")
-    p("above to 7 digits and a median of 280 ms at iteration 25; interleaved 6-trial runs of the")
-    p("previous build and this one under the same load: 214-236 ms and 175-237 ms. The search")
-    p("changes apply only with a perceptual scale (body spaces), so the synthetic figures and")
-    p("the idle-machine latency above are unchanged.")
+    p("Latency re-checked on an idle machine after the target estimate (2026-11-24, load")
+    p("average below 1, build 253fe97): Rosenbrock 20-D, argmax user, 50 trials: the same gaps")
+    p("as above to 7 digits and a median of 61.5 ms at iteration 25 (target <= 100 ms). The")
+    p("search changes apply only with a perceptual scale (body spaces), so the synthetic")
+    p("figures are unchanged.")
     p()
 
 
