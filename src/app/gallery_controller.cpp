@@ -446,8 +446,14 @@ void GalleryController::install_perception() {
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
       session_->set_perceptual_scale(scale);
-      session_->set_population(space_->population());
     }
+  }
+  // Sessions saved before the target estimate existed have a scale but no population: their
+  // later planes are centred on the estimate too (it only reads the saved choices).
+  const sps::SearchOptions& search = session_->search().options();
+  if (search.perceptual_scale.size() > 0 && search.population.empty()) {
+    const sps::Population population = space_->population();
+    if (population.mean.size() == search.dims) session_->set_population(population);
   }
   session_->set_perceptual_distance(space_->perceptual_distance());
 }

@@ -556,14 +556,34 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
     for (Eigen::Index i = 0; i < d.rows(); ++i)
       for (Eigen::Index j = i + 1; j < d.cols(); ++j) closest = std::min(closest, d(i, j));
     CHECK(closest >= app::kCloneMm);
+    // Its planes are centred on the estimate of the body in mind, with the body population.
+    CHECK(c.session().search().options().population.mean.size() == scale.size());
     c.queue(intent::ClickCell{1, 1});
     c.begin_frame(0.0);
+  }
+  {
+    // A file saved before the target estimate existed has no population: take it out.
+    nlohmann::json saved;
+    std::ifstream(session) >> saved;
+    int removed = 0;
+    const auto strip = [&removed](nlohmann::json& node, const auto& self) -> void {
+      if (!node.is_object() && !node.is_array()) return;
+      if (node.is_object()) {
+        removed += static_cast<int>(node.erase("population_mean") + node.erase("population_sd"));
+      }
+      for (auto& child : node) self(child, self);
+    };
+    strip(saved, strip);
+    REQUIRE(removed == 2);
+    std::ofstream(session) << saved.dump();
   }
   app::ControllerOptions resumed = options(session, "body");
   resumed.resume = app::ResumePolicy::kYes;
   GalleryController c(resumed, &spaces::open_space, 0.0);
   CHECK(c.session().clicks_on_plane() == 1);
   CHECK(c.session().has_perceptual_distance());
+  // Resumed, it is centred on the estimate too from its next plane on.
+  CHECK(c.session().search().options().population.mean.size() == c.session().settings().components);
   // The photo space has no such measure: the paper's fixed zoom.
   c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
   c.begin_frame(0.1);
