@@ -188,12 +188,11 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
 }
 
 void PlaneSearch::set_population(const Population& population) {
+  // The perceptual scale may come later: a unit scale stands in for it here.
   if (!population.empty()) {
-    TargetModel probe;
-    probe.scale = Eigen::VectorXd::Ones(options_.dims);
-    probe.population = population;
-    probe.temperature_mm = options_.choice_temperature_mm;
-    validate_target_model(probe, options_.dims);
+    validate_target_model(
+        {Eigen::VectorXd::Ones(options_.dims), population, options_.choice_temperature_mm},
+        options_.dims);
   }
   options_.population = population;
 }
@@ -378,12 +377,11 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   }
   const bool mean_centre = !set_directly && options_.centre_on_mean_maximum &&
                            options_.perceptual_scale.size() == options_.dims;
-  TargetModel target;
-  if (mean_centre && !options_.population.empty()) {
-    target.scale = options_.perceptual_scale;
-    target.population = options_.population;
-    target.temperature_mm = options_.choice_temperature_mm;
-  }
+  // Empty scale: no estimate of the design in mind (no population, or not centring on it).
+  const TargetModel target = mean_centre && !options_.population.empty()
+                                 ? TargetModel{options_.perceptual_scale, options_.population,
+                                               options_.choice_temperature_mm}
+                                 : TargetModel{};
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
     // tangent plane through the best point, then moved onto the surface; the estimate of the
