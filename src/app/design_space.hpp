@@ -133,10 +133,13 @@ class DesignSpace {
       const std::vector<std::string>& /*holds*/, const Eigen::VectorXd& /*reference*/) const {
     throw std::invalid_argument("this design space has no measurements to hold");
   }
-  // The point nearest to `start` meeting "name=value" targets (smallest change of x).
-  // Throws std::invalid_argument as hold_projector() does.
+  // The point nearest to `start` meeting "name=value" targets (smallest change of x) that also
+  // keeps the `held` values ("name=value", as hold_projector() takes them; bare names are
+  // skipped). Throws std::invalid_argument as hold_projector() does, and when a target
+  // contradicts a hold.
   virtual TargetSolve solve_targets(const std::vector<std::string>& /*targets*/,
-                                    const Eigen::VectorXd& /*start*/) const {
+                                    const Eigen::VectorXd& /*start*/,
+                                    const std::vector<std::string>& /*held*/ = {}) const {
     throw std::invalid_argument("this design space has no measurements to aim for");
   }
 

@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "app/gallery_layout.hpp"
 #include "app/gallery_view.hpp"
 #include "app/ui_prefs.hpp"
 #include "render/png_writer.hpp"
@@ -25,6 +26,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
+
+// The primary monitor's work area; unknown (0x0) without one. GLFW must be initialized.
+WorkArea primary_work_area() {
+  WorkArea area;
+  if (GLFWmonitor* monitor = glfwGetPrimaryMonitor(); monitor != nullptr) {
+    int x = 0, y = 0;
+    glfwGetMonitorWorkarea(monitor, &x, &y, &area.w, &area.h);
+  }
+  return area;
+}
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -52,7 +63,7 @@ class GalleryWindow {
     bool repeat;
   };
 
-  bool create_window(int width, int height);
+  bool create_window(int width, int height, bool fit_to_screen);
   void shutdown();
   void handle_keys();
   void write_screenshot(const fs::path& path);
@@ -93,7 +104,7 @@ class GalleryWindow {
   bool quit_ = false;
 };
 
-bool GalleryWindow::create_window(int width, int height) {
+bool GalleryWindow::create_window(int width, int height, bool fit_to_screen) {
   glfwSetErrorCallback([](int code, const char* text) {
     std::cerr << "GLFW error " << code << ": " << text << "\n";
   });
@@ -106,6 +117,13 @@ bool GalleryWindow::create_window(int width, int height) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  if (fit_to_screen) {
+    // A remembered size from a larger monitor (or a file saying 8192x8192) would put the grid
+    // and the side panel off-screen, or ask for framebuffers the GPU cannot make.
+    const auto fitted = fit_window_to(width, height, primary_work_area());
+    width = fitted.first;
+    height = fitted.second;
+  }
   window_ = glfwCreateWindow(width, height, "Sequential Gallery", nullptr, nullptr);
   if (window_ == nullptr) {
     std::cerr << "sequential-gallery: cannot create an OpenGL 3.3 core window\n";
@@ -271,9 +289,10 @@ void GalleryWindow::benchmark_step() {
 
 int GalleryWindow::run() {
   UiPrefs prefs;
+  std::string prefs_problem;
   if (options_.remember_ui && !options_.session_path.empty()) {
     prefs_path_ = ui_prefs_path(options_.session_path);
-    prefs = load_ui_prefs(prefs_path_);
+    prefs = load_ui_prefs(prefs_path_, &prefs_problem);
   }
   try {
     // A benchmark measures the model it was given (or the default), whatever was chosen before.
@@ -290,12 +309,14 @@ int GalleryWindow::run() {
                         : *options_.view == render::ViewPreset::kSide ? 1
                                                                       : 2;
   }
+  if (!prefs_problem.empty()) controller_->report_problem(prefs_problem);
   int width = options_.window_width, height = options_.window_height;
-  if (width <= 0 || height <= 0) {
+  const bool fit_to_screen = width <= 0 || height <= 0;
+  if (fit_to_screen) {
     width = prefs.window_width > 0 ? prefs.window_width : 1600;
     height = prefs.window_height > 0 ? prefs.window_height : 1000;
   }
-  if (!create_window(width, height)) return 1;
+  if (!create_window(width, height, fit_to_screen)) return 1;
   ViewOptions vo;
   vo.cell_size = options_.cell_size;
   vo.samples = options_.samples;

@@ -1,6 +1,7 @@
 #include "app/gallery_controller.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -45,6 +46,17 @@ std::string fewer_dimensions_note(const SpaceSettings& asked, const DesignSpace&
          std::to_string(asked.dimensions) + " asked for";
 }
 
+// Held values as the texts hold_projector() takes ("height=1.8", SI, every digit kept).
+std::vector<std::string> hold_texts(const std::vector<HeldValue>& held) {
+  std::vector<std::string> texts;
+  for (const auto& h : held) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%.17g", h.value);
+    texts.push_back(h.name + "=" + value);
+  }
+  return texts;
+}
+
 bool same_plane(const sps::Plane& a, const sps::Plane& b) {
   return a.c.size() == b.c.size() && a.c == b.c && a.u == b.u && a.v == b.v;
 }
@@ -73,9 +85,30 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
   if (options_.session_path.empty()) {
     autosave_enabled_ = false;
   } else {
-    LoadResult loaded = load_session(options_.session_path);
-    if (!loaded.problem.empty()) {
+    // One window per session file: a second window on the same file would overwrite the
+    // first one's clicks (or the first one, closed last, the second's).
+    std::string lock_problem;
+    const auto lock = util::FileLock::try_acquire(util::lock_path_for(options_.session_path),
+                                                  session_lock_, &lock_problem);
+    if (lock == util::FileLock::Outcome::kHeldElsewhere) {
+      open_elsewhere_ = true;
+      autosave_enabled_ = false;
+      autosave_status_.failed(
+          "this search is open in another window, so this one saves nothing: view it here "
+          "read-only, or start a new search (not saved; export what you find). Close the other "
+          "window to continue it here.");
+    } else if (lock == util::FileLock::Outcome::kUnavailable && options_.log) {
+      std::cerr << "sequential-gallery: " << lock_problem
+                << " (another window on the same session would not be noticed)" << std::endl;
+    }
+    LoadResult loaded = load_session(options_.session_path, !open_elsewhere_);
+    session_file_stamp_ = loaded.stamp;
+    if (open_elsewhere_) {
+      say(MessageKind::kError, autosave_status_.error());
+      if (!loaded.problem.empty()) say(MessageKind::kError, loaded.problem);
+    } else if (!loaded.problem.empty()) {
       say(MessageKind::kError, loaded.problem);
+      session_file_stamp_ = stamp_of(options_.session_path);  // moved aside: usually none now
       if (loaded.set_aside.empty()) {
         autosave_enabled_ = false;  // never overwrite a file we could not read or move
         message_.text += " -- autosave is OFF for this run";
@@ -95,7 +128,11 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
         problem = e.what();
       }
       if (!problem.empty()) {
-        keep_old_session_file("cannot resume the previous session: " + problem);
+        if (open_elsewhere_) {
+          say(MessageKind::kError, "cannot show the session open in another window: " + problem);
+        } else {
+          keep_old_session_file("cannot resume the previous session: " + problem);
+        }
       } else if (options_.resume == ResumePolicy::kYes) {
         adopt(std::move(*loaded.session), std::move(resumed_space));
         say(MessageKind::kInfo, "resumed the session from " + options_.session_path.string());
@@ -324,7 +361,10 @@ void GalleryController::resume() {
   Session resumed = std::move(*pending_resume_);
   pending_resume_.reset();
   adopt(std::move(resumed), std::move(pending_resume_space_));
-  say(MessageKind::kInfo, "resumed the previous session");
+  say(MessageKind::kInfo, open_elsewhere_
+                              ? "showing the search that is open in another window (read-only "
+                                "here: nothing is saved)"
+                              : "resumed the previous session");
 }
 
 void GalleryController::start_new() {
@@ -403,7 +443,12 @@ void GalleryController::go_to_targets(const std::vector<std::string>& targets) {
   }
   TargetSolve solved;
   try {
-    solved = space_->solve_targets(targets, session_->current_best());
+    // The typed targets are solved with what is held, so the body found keeps the holds.
+    std::vector<std::string> held;
+    if (const auto* projector = session_->constraint_projector(); projector != nullptr) {
+      held = hold_texts(projector->held_values());
+    }
+    solved = space_->solve_targets(targets, session_->current_best(), held);
   } catch (const std::exception& e) {
     say(MessageKind::kError, e.what());
     return;
@@ -469,12 +514,7 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
   // A resumed session's holds are held again at the first frame that may (before any from the
   // command line, which then replace them); the space checks them like typed ones.
   if (!session_->saved_holds().empty()) {
-    std::vector<std::string> holds;
-    for (const auto& h : session_->saved_holds()) {
-      char value[64];
-      std::snprintf(value, sizeof value, "%.17g", h.value);
-      holds.push_back(h.name + "=" + value);
-    }
+    std::vector<std::string> holds = hold_texts(session_->saved_holds());
     deferred_.insert(deferred_.begin(), intent::SetHolds{std::move(holds)});
   }
   redo_.clear();
@@ -489,27 +529,54 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
 // What happens to a session file that a new search replaces: session_store's rotation of
 // set-aside copies (<name>.previous, .previous.1, ...).
 void GalleryController::keep_old_session_file(const std::string& why) {
-  if (options_.session_path.empty()) return;
+  // Another window owns the file: it is not this window's to move.
+  if (options_.session_path.empty() || open_elsewhere_) return;
   std::error_code ec;
   if (!fs::exists(options_.session_path, ec)) return;
-  std::string kept;
+  fs::path aside;
   try {
-    kept = "kept it as " + set_aside_session(options_.session_path).string();
+    aside = set_aside_session(options_.session_path);
   } catch (const std::exception& e) {
     say(MessageKind::kError, (why.empty() ? std::string() : why + "; ") + e.what());
     return;
   }
+  session_file_stamp_ = stamp_of(options_.session_path);
   if (!why.empty()) {
-    say(MessageKind::kError, why + "; " + kept);
+    say(MessageKind::kError, why + "; kept it as " + aside.string());
   } else {
-    say(MessageKind::kInfo, "new session; the previous one is " + kept.substr(5));
+    say(MessageKind::kInfo, "new session; the previous one is kept as " + aside.string());
   }
 }
 
 void GalleryController::autosave() {
   if (!autosave_enabled_ || pending_resume_) return;
+  // The file changed since this window last read or wrote it (another program, or a window
+  // that ran without the lock): never save over the newer file. This window's state goes
+  // beside it instead and autosave stops.
+  if (const FileStamp now = stamp_of(options_.session_path);
+      now.exists && now != session_file_stamp_) {
+    autosave_enabled_ = false;
+    fs::path beside = options_.session_path;
+    beside += ".conflict-" + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(
+                                                std::chrono::system_clock::now().time_since_epoch())
+                                                .count());
+    std::string kept;
+    try {
+      save_session(*session_, beside);
+      kept = "this window's search is saved as " + beside.string();
+    } catch (const std::exception& e) {
+      kept = std::string("this window's search could not be saved beside it: ") + e.what();
+    }
+    autosave_status_.failed(options_.session_path.string() +
+                            " was changed by another window since this one saved it; it is left "
+                            "as it is and autosave is off here; " +
+                            kept);
+    say(MessageKind::kError, autosave_status_.error());
+    return;
+  }
   try {
     save_session(*session_, options_.session_path);
+    session_file_stamp_ = stamp_of(options_.session_path);
     autosave_status_.succeeded();
   } catch (const std::exception& e) {
     autosave_status_.failed(e.what());

@@ -24,6 +24,7 @@
 #include "app/session_store.hpp"
 #include "app/worker.hpp"
 #include "sps/zoom_grid.hpp"
+#include "util/file_lock.hpp"
 
 namespace app {
 
@@ -115,6 +116,8 @@ class GalleryController {
   void wait_for_optimizer(double now_seconds);
   // Saves the session now (end of the program).
   void save_now();
+  // A problem found outside the controller (a broken ui.json) shown as its message.
+  void report_problem(std::string text) { say(MessageKind::kError, std::move(text)); }
 
   // --- State (read by the view) ---
   const Session& session() const { return *session_; }
@@ -149,6 +152,8 @@ class GalleryController {
   // Persistent: the last autosave failed (cleared by the next one that succeeds).
   const std::string& autosave_problem() const { return autosave_status_.error(); }
   bool autosave_enabled() const { return autosave_enabled_; }
+  // Another window holds this session file's lock: this one shows it without saving.
+  bool open_elsewhere() const { return open_elsewhere_; }
   const std::filesystem::path& session_path() const { return options_.session_path; }
   const std::filesystem::path& last_export() const { return last_export_; }
   double last_submit_seconds() const { return last_submit_seconds_; }
@@ -205,6 +210,9 @@ class GalleryController {
 
   bool autosave_enabled_ = true;
   AutosaveStatus autosave_status_;
+  std::optional<util::FileLock> session_lock_;  // held while this window owns the session file
+  bool open_elsewhere_ = false;
+  FileStamp session_file_stamp_;  // the file as this window last read or wrote it
   Message message_;
   std::filesystem::path last_export_;
   int inspected_ = -1;

@@ -39,4 +39,12 @@ std::pair<int, int> window_size_for_cells(int grid_size, int cell) {
   return {static_cast<int>(std::ceil(w)), static_cast<int>(std::ceil(h))};
 }
 
+std::pair<int, int> fit_window_to(int width, int height, WorkArea area) {
+  const auto fit = [](int size, int available, int smallest) {
+    if (available <= 0 || size <= available) return size;
+    return std::max(smallest, static_cast<int>(0.95 * available));
+  };
+  return {fit(width, area.w, 320), fit(height, area.h, 240)};
+}
+
 }  // namespace app

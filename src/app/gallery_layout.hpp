@@ -32,4 +32,14 @@ GalleryLayout compute_layout(float width, float height, int grid_size, int fixed
 // The window size that shows n x n cells of `cell` pixels beside the side panel.
 std::pair<int, int> window_size_for_cells(int grid_size, int cell);
 
+// A screen's usable area (without panels and docks), in screen pixels; w or h 0 = unknown.
+struct WorkArea {
+  int w = 0, h = 0;
+};
+
+// The window size that fits `area`: a size that does not fit is shrunk to 95% of the area
+// (room for the title bar and borders), never below the smallest window (320x240); an unknown
+// area leaves the size as it is.
+std::pair<int, int> fit_window_to(int width, int height, WorkArea area);
+
 }  // namespace app

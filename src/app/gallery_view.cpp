@@ -732,14 +732,22 @@ void GalleryView::draw_modals(GalleryController& c) {
   if (c.resume_candidate() != nullptr) {
     if (!ImGui::IsPopupOpen("Resume session?")) ImGui::OpenPopup("Resume session?");
     if (ImGui::BeginPopupModal("Resume session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::Text("A previous session was found: %s", c.session_path().string().c_str());
+      const bool elsewhere = c.open_elsewhere();
+      ImGui::Text(elsewhere ? "This search is open in another window: %s"
+                            : "A previous session was found: %s",
+                  c.session_path().string().c_str());
       ImGui::TextUnformatted(c.resume_description().c_str());
-      if (ImGui::Button("Resume", ImVec2(140, 0))) {
+      if (elsewhere) {
+        ImGui::TextUnformatted(
+            "This window saves nothing, so the other one loses no clicks. Close the other window "
+            "to continue the search here.");
+      }
+      if (ImGui::Button(elsewhere ? "View read-only" : "Resume", ImVec2(160, 0))) {
         c.queue(intent::Resume{});
         ImGui::CloseCurrentPopup();
       }
       ImGui::SameLine();
-      if (ImGui::Button("Start new", ImVec2(140, 0))) {
+      if (ImGui::Button(elsewhere ? "New search (not saved)" : "Start new", ImVec2(160, 0))) {
         c.queue(intent::StartNew{});
         ImGui::CloseCurrentPopup();
       }

@@ -477,24 +477,26 @@ std::string Session::to_json() const {
 }
 
 Session Session::from_json(const std::string& text) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
-  }
+  // Refuses text nested too deep or holding huge strings before a tree exists (throws
+  // std::runtime_error naming the problem and its byte offset).
+  const json j = sps::json_fields::parse_bounded(text);
   try {
     if (!j.is_object() || j.value("format", "") != "sequential-gallery-session") {
       throw std::runtime_error("not a sequential-gallery session file");
     }
     if (integer_from(j.at("version"), "version", 0, 1000000) != 1) {
-      throw std::runtime_error("unsupported session version " + j.at("version").dump());
+      throw std::runtime_error("unsupported session version " +
+                               sps::json_fields::brief(j.at("version")));
     }
     // Every setting is checked before anything is sized by it.
-    const auto& s = j.at("settings");
+    const auto& s = sps::json_fields::field(j, "settings", "settings");
+    if (!s.is_object()) throw std::runtime_error("settings must be an object");
     SessionSettings settings;
-    settings.space = s.value("space", "body");  // files from before photos were bodies
-    settings.model_path = s.at("model_path").get<std::string>();
+    // Files from before photos were bodies.
+    settings.space = s.contains("space") ? sps::json_fields::text(s, "space", "settings.space", 64)
+                                         : std::string("body");
+    // A path longer than the system allows (PATH_MAX) cannot name a file.
+    settings.model_path = sps::json_fields::text(s, "model_path", "settings.model_path", 4096);
     settings.components =
         static_cast<int>(integer_from(s.at("components"), "components", 1, sps::kMaxSearchDims));
     settings.grid_size = static_cast<int>(integer_from(s.at("grid_size"), "grid_size", 3, 5));
@@ -566,7 +568,7 @@ Session Session::from_json(const std::string& text) {
     session.update_views();
     return session;
   } catch (const json::exception& e) {
-    throw std::runtime_error(std::string("malformed session (") + e.what() + ")");
+    throw std::runtime_error("malformed session (" + sps::json_fields::library_message(e) + ")");
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("bad settings in session (") + e.what() + ")");
   } catch (const std::length_error& e) {

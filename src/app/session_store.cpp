@@ -8,7 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <sys/stat.h>
+
 #include "util/atomic_file.hpp"
+#include "util/file_read.hpp"
 
 namespace app {
 
@@ -71,22 +74,15 @@ fs::path set_aside_session(const fs::path& path) {
 
 namespace {
 
-// Reads the whole file; returns a problem text (empty when fine).
+// Reads the whole file; returns a problem text (empty when fine). A session is a few megabytes
+// at most; a huge file, a pipe or a device is refused before anything is read.
 std::string read_session_text(const fs::path& path, std::string& text) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return path.string() + ": not a regular file";
-  // A session is a few megabytes at most; never read a huge file into memory.
-  constexpr std::uintmax_t kMaxBytes = 256u << 20;
-  const auto size = fs::file_size(path, ec);
-  if (ec) return path.string() + ": cannot read: " + ec.message();
-  if (size > kMaxBytes) {
-    return path.string() + ": too large for a session file (" + std::to_string(size) + " bytes)";
+  constexpr std::size_t kMaxBytes = 256u << 20;
+  try {
+    text = util::read_regular_file(path, kMaxBytes);
+  } catch (const util::FileReadError& e) {
+    return e.what();
   }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  if (in) out << in.rdbuf();
-  if (!in) return path.string() + ": cannot read: " + std::strerror(errno);
-  text = out.str();
   return {};
 }
 
@@ -106,10 +102,23 @@ Session read_session_file(const fs::path& path) {
   }
 }
 
-LoadResult load_session(const fs::path& path) {
+FileStamp stamp_of(const fs::path& path) {
+  FileStamp stamp;
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return stamp;
+  stamp.exists = true;
+  stamp.device = st.st_dev;
+  stamp.inode = st.st_ino;
+  stamp.size = static_cast<std::uintmax_t>(st.st_size);
+  stamp.modified_ns = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+  return stamp;
+}
+
+LoadResult load_session(const fs::path& path, bool move_corrupt_aside) {
   LoadResult result;
   std::error_code ec;
   if (!fs::exists(path, ec)) return result;
+  result.stamp = stamp_of(path);
   std::string text;
   if (std::string problem = read_session_text(path, text); !problem.empty()) {
     result.problem = "cannot read session " + problem;
@@ -119,6 +128,10 @@ LoadResult load_session(const fs::path& path) {
     result.session = Session::from_json(text);
     return result;
   } catch (const std::exception& e) {
+    if (!move_corrupt_aside) {
+      result.problem = "session file " + path.string() + " is corrupt: " + e.what();
+      return result;
+    }
     const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
                            std::chrono::system_clock::now().time_since_epoch())
                            .count();

@@ -1,6 +1,7 @@
 // Session files: where they live, atomic autosave, and loading that never loses a file.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -27,15 +28,33 @@ constexpr int kKeptPreviousSessions = 5;
 // could not be moved (the file is then left where it is).
 std::filesystem::path set_aside_session(const std::filesystem::path& path);
 
+// What identifies one version of a file on disk: every atomic save makes a new inode, so a file
+// replaced by another program (another window's autosave) has a different stamp even when its
+// size and time agree.
+struct FileStamp {
+  bool exists = false;
+  std::uintmax_t device = 0, inode = 0, size = 0;
+  long long modified_ns = 0;
+  bool operator==(const FileStamp& o) const {
+    return exists == o.exists && device == o.device && inode == o.inode && size == o.size &&
+           modified_ns == o.modified_ns;
+  }
+  bool operator!=(const FileStamp& o) const { return !(*this == o); }
+};
+FileStamp stamp_of(const std::filesystem::path& path);
+
 struct LoadResult {
   std::optional<Session> session;   // set when the file existed and was valid
   std::string problem;              // non-empty when the file was unreadable or corrupt
   std::filesystem::path set_aside;  // where a corrupt file was moved to
+  FileStamp stamp;                  // the file as it was read
 };
 
-// No file: empty result. A corrupt file is renamed to "<name>.corrupt-<time>" (never
-// overwritten, never deleted) and reported in `problem`; the caller starts a fresh session.
-LoadResult load_session(const std::filesystem::path& path);
+// No file: empty result. With `move_corrupt_aside` false (a window that only views a session
+// another window has open) a corrupt file is only reported. Otherwise a corrupt file is renamed to
+// "<name>.corrupt-<time>" (never overwritten, never deleted) and reported in `problem`; the caller
+// starts a fresh session.
+LoadResult load_session(const std::filesystem::path& path, bool move_corrupt_aside = true);
 
 // Reads and parses a session file without touching it (session-info, tests). Throws
 // std::runtime_error "<file>: <problem>" when it is missing, unreadable or unusable.

@@ -1,12 +1,13 @@
 #include "app/ui_prefs.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
+#include <chrono>
 
 #include <nlohmann/json.hpp>
 
+#include "sps/json_fields.hpp"
 #include "util/atomic_file.hpp"
+#include "util/file_read.hpp"
 
 namespace app {
 
@@ -14,14 +15,52 @@ std::filesystem::path ui_prefs_path(const std::filesystem::path& session_path) {
   return session_path.parent_path() / "ui.json";
 }
 
-UiPrefs load_ui_prefs(const std::filesystem::path& path) {
+namespace {
+
+// ui.json holds a few short fields; anything larger is not ours.
+constexpr std::size_t kMaxPrefsBytes = 1u << 20;
+
+// Moves a broken ui.json out of the way (never deleted: it may be something the user put there
+// by mistake) and says where it went.
+std::string set_aside(const std::filesystem::path& path, const std::string& why) {
+  const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
+                         std::chrono::system_clock::now().time_since_epoch())
+                         .count();
+  std::filesystem::path aside = path;
+  aside += ".corrupt-" + std::to_string(stamp);
+  std::error_code ec;
+  for (int i = 1; std::filesystem::exists(std::filesystem::symlink_status(aside, ec)); ++i) {
+    aside = path;
+    aside += ".corrupt-" + std::to_string(stamp) + "-" + std::to_string(i);
+  }
+  std::filesystem::rename(path, aside, ec);
+  std::string text = "the remembered window settings " + why + "; using defaults";
+  if (ec) return text + " (could not move it aside: " + ec.message() + ")";
+  return text + " and moved it to " + aside.string();
+}
+
+}  // namespace
+
+UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
   UiPrefs p;
-  std::ifstream in(path);
-  if (!in) return p;
-  std::ostringstream text;
-  text << in.rdbuf();
-  const auto j = nlohmann::json::parse(text.str(), nullptr, false);
-  if (!j.is_object()) return p;
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return p;
+  nlohmann::json j;
+  std::string why;
+  try {
+    j = sps::json_fields::parse_bounded(util::read_regular_file(path, kMaxPrefsBytes),
+                                        {kMaxPrefsBytes, 8, 8192});
+    if (!j.is_object()) why = "(" + path.string() + ") are not a JSON object";
+  } catch (const util::FileReadError& e) {
+    why = "cannot be read (" + std::string(e.what()) + ")";
+  } catch (const std::exception& e) {
+    why = "(" + path.string() + ") are broken: " + e.what();
+  }
+  if (!why.empty()) {
+    const std::string text = set_aside(path, why);
+    if (problem != nullptr) *problem = text;
+    return p;
+  }
   auto get_int = [&](const char* key, int fallback, int lo, int hi) {
     const auto it = j.find(key);
     if (it == j.end() || !it->is_number_integer()) return fallback;

@@ -1,7 +1,7 @@
 // What the window remembers between launches: its size, the last folder and file name saved
 // to, the view, which panels were open and the body model chosen for a new search. A small JSON
-// file beside the session file; a missing or broken one just means defaults (it is a convenience,
-// never user work).
+// file beside the session file; a missing or broken one means defaults (it is a convenience,
+// never user work), and a broken one is reported and set aside.
 #pragma once
 
 #include <filesystem>
@@ -35,7 +35,10 @@ struct UiPrefs {
 
 // "<session folder>/ui.json".
 std::filesystem::path ui_prefs_path(const std::filesystem::path& session_path);
-UiPrefs load_ui_prefs(const std::filesystem::path& path);
+// A missing file gives defaults. A file that cannot be used (not a regular file, over 1 MB,
+// not a JSON object, nested too deep) gives defaults too, is moved aside as
+// "ui.json.corrupt-<time>" and is described in `problem` for the window to show.
+UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem = nullptr);
 // Atomic; returns false (and leaves the old file) when it cannot be written.
 bool save_ui_prefs(const UiPrefs& prefs, const std::filesystem::path& path);
 

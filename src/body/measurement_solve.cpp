@@ -28,6 +28,62 @@ MeasurementTarget parse_target(const std::string& text, bool value_required) {
   return {kind, parse_measurement_value(*kind, text.substr(eq + 1))};
 }
 
+namespace {
+
+const MeasurementTarget* find_kind(const std::vector<MeasurementTarget>& targets,
+                                   const char* name) {
+  for (const auto& t : targets) {
+    if (t.kind != nullptr && std::string(t.kind->name) == name) return &t;
+  }
+  return nullptr;
+}
+
+// BMI is mass / height^2, so the three cannot be chosen freely: refuse values that no body
+// has, allowing for each one's tolerance (first-order propagation of the height and mass
+// tolerances into BMI).
+void check_bmi_agrees(const std::vector<MeasurementTarget>& targets) {
+  const auto* h = find_kind(targets, "height");
+  const auto* m = find_kind(targets, "mass");
+  const auto* b = find_kind(targets, "bmi");
+  if (h == nullptr || m == nullptr || b == nullptr) return;
+  if (!(h->value > 0.0) || !(m->value > 0.0) || !std::isfinite(b->value)) return;
+  const double implied = m->value / (h->value * h->value);
+  const double allowed = b->kind->hold_tolerance + m->kind->hold_tolerance / (h->value * h->value) +
+                         2.0 * implied * h->kind->hold_tolerance / h->value;
+  if (std::abs(implied - b->value) <= allowed) return;
+  throw std::invalid_argument(
+      "height " + format_measurement(h->kind->quantity, h->value, Units::kMetric) + " and mass " +
+      format_measurement(m->kind->quantity, m->value, Units::kMetric) + " make a BMI of " +
+      format_measurement(b->kind->quantity, implied, Units::kMetric) + ", not " +
+      format_measurement(b->kind->quantity, b->value, Units::kMetric) +
+      ": no body has all three; give two of height, mass and bmi, or values that agree");
+}
+
+}  // namespace
+
+std::vector<MeasurementTarget> targets_with_holds(std::vector<MeasurementTarget> targets,
+                                                  const std::vector<MeasurementTarget>& holds) {
+  const std::size_t typed = targets.size();
+  for (const auto& hold : holds) {
+    if (hold.kind == nullptr || std::isnan(hold.value)) continue;
+    bool named = false;
+    for (std::size_t i = 0; i < typed; ++i) {
+      if (targets[i].kind != hold.kind) continue;
+      named = true;
+      if (std::abs(targets[i].value - hold.value) > hold.kind->hold_tolerance) {
+        const auto q = hold.kind->quantity;
+        throw std::invalid_argument("the target " + std::string(hold.kind->name) + " " +
+                                    format_measurement(q, targets[i].value, Units::kMetric) +
+                                    " contradicts the hold on " + hold.kind->name + " at " +
+                                    format_measurement(q, hold.value, Units::kMetric) +
+                                    ": release the hold or aim for the held value");
+      }
+    }
+    if (!named) targets.push_back(hold);
+  }
+  return targets;
+}
+
 MeasurementConstraints::MeasurementConstraints(std::shared_ptr<const Model> model,
                                                std::vector<MeasurementTarget> targets,
                                                double tolerance_share)
@@ -52,6 +108,7 @@ MeasurementConstraints::MeasurementConstraints(std::shared_ptr<const Model> mode
     if (name == "hips") bands_ |= kHipsBand;
     tolerance_[static_cast<Eigen::Index>(i)] = tolerance_share * t.kind->hold_tolerance;
   }
+  check_bmi_agrees(targets_);
   if (!targets_.empty()) {
     const Eigen::VectorXd mean = values(Eigen::VectorXd::Constant(dims(), 0.5));
     for (std::size_t i = 0; i < targets_.size(); ++i) {

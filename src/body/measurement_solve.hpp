@@ -37,6 +37,13 @@ struct MeasurementTarget {
 // false accepts a bare "height" (value NaN: the caller fills in the start body's value).
 MeasurementTarget parse_target(const std::string& text, bool value_required = true);
 
+// `targets` followed by the held values that are not targets too: the body a target solve
+// finds must keep what is held. A target on a held measurement must agree with the hold
+// (within its tolerance): throws std::invalid_argument naming both otherwise. Holds without a
+// value (NaN) are skipped.
+std::vector<MeasurementTarget> targets_with_holds(std::vector<MeasurementTarget> targets,
+                                                  const std::vector<MeasurementTarget>& holds);
+
 struct SolveResult {
   Eigen::VectorXd x;           // in [0,1]^K
   bool reached = false;        // every target within its tolerance
@@ -51,9 +58,11 @@ struct SolveResult {
 
 class MeasurementConstraints {
  public:
-  // Throws std::invalid_argument when a target is NaN, named twice, or not measurable on this
-  // model (e.g. shoulder_width without shoulder joints). `tolerance_share` scales each kind's
-  // hold tolerance (1 cm, 1.5 kg...) into the tolerance a solve aims for.
+  // Throws std::invalid_argument when a target is NaN, named twice, not measurable on this
+  // model (e.g. shoulder_width without shoulder joints), or when height, mass and bmi are all
+  // given with values that disagree (BMI is mass / height^2: no body meets all three).
+  // `tolerance_share` scales each kind's hold tolerance (1 cm, 1.5 kg...) into the tolerance a
+  // solve aims for.
   MeasurementConstraints(std::shared_ptr<const Model> model, std::vector<MeasurementTarget> targets,
                          double tolerance_share = 0.5);
 

@@ -5,6 +5,7 @@
 
 #include "app/gallery_app.hpp"
 #include "app/session_store.hpp"
+#include "body/measurement_solve.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
@@ -89,6 +90,18 @@ int run(int argc, char** argv) {
   o.components = args.get_int("components", 10);
   o.targets = args.get_all("target");
   o.holds = args.get_all("hold");
+  if (!o.targets.empty() && !o.holds.empty()) {
+    // A target on a held measurement must agree with the hold: refused here rather than
+    // solved and then held at another value.
+    try {
+      std::vector<body::MeasurementTarget> targets, holds;
+      for (const auto& t : o.targets) targets.push_back(body::parse_target(t, true));
+      for (const auto& h : o.holds) holds.push_back(body::parse_target(h, false));
+      (void)body::targets_with_holds(std::move(targets), holds);
+    } catch (const std::invalid_argument& e) {
+      throw cli::ArgError(std::string("--target/--hold: ") + e.what());
+    }
+  }
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
   if (o.components < 1 || o.components > sps::kMaxSearchDims) {

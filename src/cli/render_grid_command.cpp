@@ -1,8 +1,9 @@
 // `render-grid`: the first plane's grid of a new search, headless (EGL surfaceless), drawn by
 // the same cell code as the window (app::CellView and the design space's cell content).
-#include <fstream>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "app/cell_view.hpp"
@@ -12,6 +13,7 @@
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
 #include "spaces/space_factory.hpp"
+#include "util/atomic_file.hpp"
 
 namespace {
 
@@ -38,6 +40,14 @@ int run(int argc, char** argv) {
                        "samples", "cells-dir", "cells-csv", "o", "output", "target", "hold"});
   const auto out = args.get("o") ? args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render-grid: -o GRID.png is required\n" + std::string(kUsage));
+  for (const char* option : {"o", "output", "cells-dir", "cells-csv"}) {
+    if (const auto value = args.get(option); value && value->empty()) {
+      const std::string name = option;
+      throw cli::ArgError("render-grid: " + std::string(name.size() == 1 ? "-" : "--") + name +
+                          " is empty; give a " + (name == "cells-dir" ? "folder" : "file") +
+                          " name");
+    }
+  }
   app::SpaceSettings space_settings = spaces::default_settings(args.get_or("space", "body"));
   if (space_settings.kind != "body" && space_settings.kind != "photo") {
     throw cli::ArgError("render-grid: --space must be body or photo");
@@ -78,7 +88,7 @@ int run(int argc, char** argv) {
   if (const auto targets = args.get_all("target"); !targets.empty()) {
     app::TargetSolve solved;
     try {
-      solved = space->solve_targets(targets, session.current_best());
+      solved = space->solve_targets(targets, session.current_best(), args.get_all("hold"));
     } catch (const std::invalid_argument& e) {
       throw cli::ArgError(std::string("render-grid: --target: ") + e.what());
     }
@@ -111,20 +121,30 @@ int run(int argc, char** argv) {
   render::Camera camera;  // front view, as the window starts
   app::CellLook look;
   look.camera = space->uses_camera() ? &camera : nullptr;
-  std::ofstream csv;
-  if (const auto path = args.get("cells-csv")) {
-    csv.open(*path);
-    if (!csv) throw std::runtime_error("cannot write " + *path);
+  // The CSV is built in memory and written with the PNGs, through the atomic writer: a full
+  // disk is an error naming the file, never a "wrote" over an empty file.
+  const auto csv_path = args.get("cells-csv");
+  std::ostringstream csv;
+  const bool want_csv = csv_path.has_value();
+  if (want_csv) {
     csv << "row,col";
     for (int d = 0; d < space->dimensions(); ++d) csv << ",x" << d + 1;
   }
   const auto cells_dir = args.get("cells-dir");
-  if (cells_dir) std::filesystem::create_directories(*cells_dir);
+  if (cells_dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(*cells_dir, ec);
+    if (ec || !std::filesystem::is_directory(*cells_dir, ec)) {
+      throw std::runtime_error(
+          "render-grid: --cells-dir " + *cells_dir + ": cannot create that folder" +
+          (ec ? " (" + ec.message() + ")" : std::string(" (a file is there)")));
+    }
+  }
   for (int row = 0; row < n; ++row) {
     for (int col = 0; col < n; ++col) {
       const auto& point = points[static_cast<std::size_t>(row * n + col)];
       app::CellView view;
-      view.set_point(*space, point.x, csv.is_open());
+      view.set_point(*space, point.x, want_csv);
       view.draw(look, 0, cell, cell, samples);
       const auto pixels = view.fbo.read_pixels();  // bottom row first
       for (int y = 0; y < cell; ++y) {
@@ -139,7 +159,7 @@ int run(int argc, char** argv) {
                               ("cell_" + std::to_string(row) + "_" + std::to_string(col) + ".png"),
                           cell, cell, pixels);
       }
-      if (csv.is_open()) {
+      if (want_csv) {
         const auto numbers = space->numbers(*view.prepared);
         if (row == 0 && col == 0) {
           for (const auto& [name, value] : numbers) csv << "," << name;
@@ -152,6 +172,7 @@ int run(int argc, char** argv) {
       }
     }
   }
+  if (want_csv) util::write_file_atomically(*csv_path, csv.str());
   render::write_png(*out, size, size, grid, false);
   std::cout << "wrote " << *out << " (" << n << "x" << n << " cells of " << cell << " px, "
             << space->description() << ", seed " << settings.seed << ", " << context.renderer()

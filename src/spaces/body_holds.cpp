@@ -112,6 +112,14 @@ std::shared_ptr<const app::ConstraintProjector> make_body_holds(
   for (auto& t : targets) {
     if (std::isnan(t.value)) t.value = at.*(t.kind->field);
   }
+  // A hold no body in the search range meets (height 0.5 m, BMI 60, or height, mass and BMI
+  // that disagree) would show nine copies of the nearest body and end every plane at once:
+  // refuse it as a target is refused, with the nearest reachable values.
+  {
+    const body::MeasurementConstraints check(model, targets);
+    const body::SolveResult reachable = check.solve(reference);
+    if (!reachable.reached) throw std::invalid_argument(reachable.message);
+  }
   // Cells aim for 30% of the hold tolerance (3 mm, 0.45 kg), leaving room for the
   // Gauss-Newton steps that stop as soon as they are inside it.
   return std::make_shared<BodyHolds>(

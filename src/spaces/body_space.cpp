@@ -85,9 +85,13 @@ std::shared_ptr<const app::ConstraintProjector> BodySpace::hold_projector(
 }
 
 app::TargetSolve BodySpace::solve_targets(const std::vector<std::string>& texts,
-                                          const Eigen::VectorXd& start) const {
+                                          const Eigen::VectorXd& start,
+                                          const std::vector<std::string>& held) const {
   if (!shared_model_) shared_model_ = std::make_shared<const body::Model>(model_);
-  const body::MeasurementConstraints constraints(shared_model_, parse_all(texts));
+  std::vector<body::MeasurementTarget> holds;
+  for (const auto& text : held) holds.push_back(body::parse_target(text, false));
+  const body::MeasurementConstraints constraints(shared_model_,
+                                                 body::targets_with_holds(parse_all(texts), holds));
   const auto result = constraints.solve(start);
   return {result.x, result.reached, result.message};
 }

@@ -57,7 +57,8 @@ class BodySpace : public app::DesignSpace {
       const app::PreparedCell* hovered, const std::vector<std::string>& holds,
       app::MeasurementPanelState& state) const override;
   app::TargetSolve solve_targets(const std::vector<std::string>& targets,
-                                 const Eigen::VectorXd& start) const override;
+                                 const Eigen::VectorXd& start,
+                                 const std::vector<std::string>& held = {}) const override;
 
   app::PairwiseDistance perceptual_distance() const override;
   Eigen::VectorXd perceptual_scale() const override;

@@ -4,9 +4,12 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+
+#include "util/file_read.hpp"
 
 namespace spaces {
 
@@ -63,11 +66,23 @@ void write_to_string(void* context, void* data, int size) {
 }  // namespace
 
 Image load_image(const fs::path& path) {
+  // Read through the regular-file reader first: stb would block forever on a pipe and read a
+  // device without end.
+  constexpr std::size_t kMaxFileBytes = 256u << 20;
+  std::string bytes;
+  try {
+    bytes = util::read_regular_file(path, kMaxFileBytes);
+  } catch (const util::FileReadError& e) {
+    throw std::runtime_error(e.what());
+  }
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
+    throw std::runtime_error(path.string() + ": too large for an image");
+  }
+  const auto* data_in = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
-  if (stbi_info(path.c_str(), &w, &h, &channels) == 0) {
+  if (stbi_info_from_memory(data_in, length, &w, &h, &channels) == 0) {
     const char* why = stbi_failure_reason();
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw std::runtime_error(path.string() + ": no such file");
     throw std::runtime_error(path.string() + ": not a PNG or JPEG image we can read (" +
                              (why != nullptr ? why : "unknown format") + ")");
   }
@@ -77,7 +92,7 @@ Image load_image(const fs::path& path) {
                              std::to_string(h) + " pixels is too large (at most " +
                              std::to_string(kMaxEdge) + " per side, 64 Mpixels)");
   }
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  unsigned char* data = stbi_load_from_memory(data_in, length, &w, &h, &channels, 4);
   if (data == nullptr) {
     const char* why = stbi_failure_reason();
     throw std::runtime_error(path.string() + ": cannot decode the image (" +

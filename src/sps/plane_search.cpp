@@ -552,12 +552,12 @@ std::string PlaneSearch::to_json() const {
 
 PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
   try {
-    const json j = json::parse(json_text);
+    const json j = json_fields::parse_bounded(json_text);
     if (!j.is_object() || j.value("format", "") != kFormat) {
       throw std::runtime_error("not a plane-search state (format field missing or different)");
     }
     if (int_from_json(j.at("version"), "version", 0, 1000000) != kVersion) {
-      throw std::runtime_error("unsupported version " + j.at("version").dump());
+      throw std::runtime_error("unsupported version " + json_fields::brief(j.at("version")));
     }
     // Every option is checked before the search (and its per-dimension arrays) exists.
     const json& o = j.at("options");
@@ -570,12 +570,13 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
         o.at("seed").is_number_unsigned()
             ? o.at("seed").get<std::uint64_t>()
             : static_cast<std::uint64_t>(int_from_json(o.at("seed"), "seed", 0, LLONG_MAX)));
-    if (!parse_method(o.at("method").get<std::string>(), options.method)) {
-      throw std::runtime_error("unknown method " + o.at("method").dump());
+    if (!parse_method(json_fields::text(o, "method", "method", 64), options.method)) {
+      throw std::runtime_error("unknown method " + json_fields::brief(o.at("method")));
     }
-    options.current_best = o.at("current_best").get<std::string>() == "last-selection"
-                               ? CurrentBest::kLastSelection
-                               : CurrentBest::kPosteriorMean;
+    options.current_best =
+        json_fields::text(o, "current_best", "current_best", 64) == "last-selection"
+            ? CurrentBest::kLastSelection
+            : CurrentBest::kPosteriorMean;
     options.plane_restarts =
         static_cast<int>(int_from_json(o.at("plane_restarts"), "plane_restarts", 0, 1000));
     options.ei_restarts =
@@ -623,6 +624,11 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     // Files from before the target estimate have no population: their planes stay centred
     // on the posterior-mean maximum.
     if (o.contains("population_mean") || o.contains("population_sd")) {
+      if (!o.contains("population_mean") || !o.contains("population_sd")) {
+        throw std::runtime_error(o.contains("population_mean")
+                                     ? "population_mean is given without population_sd"
+                                     : "population_sd is given without population_mean");
+      }
       options.population.mean =
           vec_from_json(o.at("population_mean"), "population_mean", options.dims, 0.0, 1.0);
       options.population.sd =
@@ -725,7 +731,7 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
             : 0;
     return search;
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(std::string("plane-search state: ") + e.what());
+    throw std::runtime_error("plane-search state: " + json_fields::library_message(e));
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("plane-search state: ") + e.what());
   } catch (const std::length_error& e) {

@@ -83,6 +83,14 @@ void write_file_atomically(const std::filesystem::path& path, const void* data, 
   if (std::filesystem::is_directory(path, ec)) {
     throw FileWriteError(target + ": cannot write: that is a folder; give a file name");
   }
+  // Renaming over a device or a pipe would replace it (as root, /dev/full itself) and write
+  // nothing where the user looks: such a target is refused. A link is replaced, not followed.
+  if (struct stat st{};
+      ::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode)) {
+    throw FileWriteError(target +
+                         ": cannot write: that is a device, pipe or socket, not a file; "
+                         "give a file name");
+  }
   const std::string tmpl = (dir / temporary_name_for(path).filename()).string();
   std::vector<char> name(tmpl.begin(), tmpl.end());
   name.push_back('\0');

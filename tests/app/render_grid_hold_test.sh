@@ -62,4 +62,15 @@ refuse "unknown measurement 'weight'" --hold weight
 refuse "height 'nan' is not a number" --hold height=nan
 refuse "mass '1e9' is out of range" --hold mass=1e9
 refuse "no measurements to hold" --space photo --hold height
+# Holds no body in the search range meets were shown as nine copies of the nearest body.
+refuse "out of reach.*nearest reachable: height" --hold height=0.5
+refuse "out of reach.*nearest reachable: height" --hold height=3
+refuse "out of reach.*nearest reachable: mass" --hold mass=500
+refuse "out of reach.*nearest reachable: bmi" --hold bmi=60
+# Height, mass and BMI that no body has together.
+refuse "make a BMI of 11.1, not 40.0" --hold height=1.9 --hold mass=40 --hold bmi=40
+refuse "is given twice" --hold height=1.8 --hold height=1.7
+# A target on a held measurement must agree with the hold.
+refuse "target height 170.0 cm contradicts the hold on height at 180.0 cm" \
+  --hold height=1.8 --target height=1.7
 echo "render_grid_hold: all checks passed"

@@ -97,6 +97,39 @@ std::vector<SessionFixture> broken_session_fixtures() {
   add("wrong-format", "not a sequential-gallery session",
       [](json& j) { j["format"] = "something else"; });
   const std::string text = good.dump(1);
+  // Values nested 100,000 deep (the serializer that echoed them into the message recursed
+  // until the stack ran out) and a text far longer than any field holds. Built as text: a tree
+  // that deep is what must never be built.
+  const auto deep = [](const std::string& inner) {
+    constexpr int kDepth = 100000;
+    return std::string(kDepth, '[') + inner + std::string(kDepth, ']');
+  };
+  const auto replace_first = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const auto at = t.find(from);
+    if (at == std::string::npos) throw std::logic_error("fixture text lacks " + from);
+    return t.replace(at, from.size(), to);
+  };
+  out.push_back({"deep-version", replace_first("\"version\": 1", "\"version\": " + deep("1")),
+                 "nested more than"});
+  out.push_back({"deep-components",
+                 replace_first("\"components\": 4", "\"components\": " + deep("4")),
+                 "nested more than"});
+  out.push_back({"deep-search",
+                 replace_first("\"search\": {", "\"search\": {\"deep\": " + deep("") + ","),
+                 "nested more than"});
+  out.push_back({"model-path-huge",
+                 replace_first("\"model_path\": \"\"",
+                               "\"model_path\": \"" + std::string(300000, 'a') + "\""),
+                 "longer than"});
+  add("model-path-long", "settings.model_path is a text of 5000 bytes",
+      [](json& j) { j["settings"]["model_path"] = std::string(5000, 'b'); });
+  add("space-null", "settings.space must be text, found null",
+      [](json& j) { j["settings"]["space"] = nullptr; });
+  add("population-mean-without-sd", "population_mean is given without population_sd", [](json& j) {
+    j["search"]["options"]["population_mean"] = json::array({0.5, 0.5, 0.5, 0.5});
+    j["search"]["options"].erase("population_sd");
+  });
   out.push_back({"truncated", text.substr(0, text.size() / 2), "not valid JSON"});
   out.push_back({"empty", "", "not valid JSON"});
   out.push_back({"top-level-array", "[1, 2, 3]", "not a sequential-gallery session"});

@@ -38,6 +38,34 @@ if [ "$with_render" = render ]; then
   check_full_disk body.png "$exe" render --size 96x96 --samples 1
 fi
 
+if [ "$with_render" = render ]; then
+  check_full_disk grid.png "$exe" render-grid --cell 32 --samples 0
+  # The cells' CSV goes through the atomic writer too: it said "wrote" and left 0 bytes.
+  "$exe" render-grid --cell 32 --samples 0 --cells-csv "$dir/cells.csv" -o "$dir/g.png" >/dev/null ||
+    fail "render-grid --cells-csv: the normal write failed"
+  cp "$dir/cells.csv" "$dir/cells.csv.orig"
+  # A 1 KiB limit: the CSV (about 2 KB) is the first file to hit it.
+  out=$( (trap '' XFSZ; ulimit -f 1; "$exe" render-grid --cell 32 --samples 0 \
+    --cells-csv "$dir/cells.csv" -o "$dir/g2.png") 2>&1)
+  rc=$?
+  [ $rc -ne 0 ] || fail "render-grid --cells-csv: exit 0 on a full disk: $out"
+  grep -q "wrote" <<<"$out" && fail "render-grid --cells-csv: says 'wrote' on a full disk: $out"
+  grep -qF "$dir/cells.csv" <<<"$out" || fail "render-grid --cells-csv: error does not name the CSV: $out"
+  cmp -s "$dir/cells.csv" "$dir/cells.csv.orig" || fail "render-grid --cells-csv: old CSV changed"
+  echo "ok: render-grid --cells-csv on a full disk: $out"
+  # A device as the target is refused, never renamed over (as root that replaced /dev/full).
+  out=$("$exe" render-grid --cell 32 --samples 0 --cells-csv /dev/full -o "$dir/g3.png" 2>&1) &&
+    fail "render-grid --cells-csv /dev/full succeeded: $out"
+  grep -q "device, pipe or socket" <<<"$out" || fail "--cells-csv /dev/full: unclear: $out"
+  [ -c /dev/full ] || fail "/dev/full is no longer a device"
+  echo "ok: --cells-csv /dev/full: $out"
+  for opt in --cells-csv --cells-dir; do
+    out=$("$exe" render-grid --cell 32 $opt "" -o "$dir/g4.png" 2>&1) && fail "$opt '' accepted"
+    grep -q -- "$opt is empty" <<<"$out" || fail "$opt '': unclear message: $out"
+    echo "ok: $opt '': $out"
+  done
+fi
+
 # A legal 250-byte file name: its temporary name must still fit in NAME_MAX (255).
 long="$(printf 'b%.0s' $(seq 1 246)).glb"
 out=$("$exe" export -o "$dir/$long" 2>&1) || fail "250-character file name: $out"
