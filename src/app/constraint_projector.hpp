@@ -4,6 +4,7 @@
 // and cells are made. No GL, no body model here.
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,18 @@ struct HeldValue {
   std::string name;
   double value = 0.0;
 };
+
+// Held values as the texts DesignSpace::hold_projector() takes ("height=1.8": the value in
+// the space's units, every digit kept).
+inline std::vector<std::string> hold_texts(const std::vector<HeldValue>& held) {
+  std::vector<std::string> texts;
+  for (const auto& h : held) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%.17g", h.value);
+    texts.push_back(h.name + "=" + value);
+  }
+  return texts;
+}
 
 class ConstraintProjector {
  public:

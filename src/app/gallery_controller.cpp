@@ -46,17 +46,6 @@ std::string fewer_dimensions_note(const SpaceSettings& asked, const DesignSpace&
          std::to_string(asked.dimensions) + " asked for";
 }
 
-// Held values as the texts hold_projector() takes ("height=1.8", SI, every digit kept).
-std::vector<std::string> hold_texts(const std::vector<HeldValue>& held) {
-  std::vector<std::string> texts;
-  for (const auto& h : held) {
-    char value[64];
-    std::snprintf(value, sizeof value, "%.17g", h.value);
-    texts.push_back(h.name + "=" + value);
-  }
-  return texts;
-}
-
 bool same_plane(const sps::Plane& a, const sps::Plane& b) {
   return a.c.size() == b.c.size() && a.c == b.c && a.u == b.u && a.v == b.v;
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "app/constraint_projector.hpp"
 #include "app/session_store.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
@@ -60,6 +61,21 @@ int run(int argc, char** argv) {
                                " dimensions, the session " + std::to_string(s.components));
     }
     std::cout << "space check: " << space->description() << "\n";
+    // The window holds a resumed session's holds again; one it would refuse (an unknown name,
+    // a name given twice, a value no body in the range has) makes the session unusable as saved.
+    if (!session->saved_holds().empty()) {
+      const auto texts = app::hold_texts(session->saved_holds());
+      std::string listed;
+      for (const auto& t : texts) listed += (listed.empty() ? "" : ", ") + t;
+      try {
+        const auto projector = space->hold_projector(texts, session->current_best());
+        std::cout << "holds: " << (projector ? projector->description() : listed) << "\n";
+      } catch (const std::invalid_argument& e) {
+        std::cout << "usable: no: " << path << ": its holds (" << listed
+                  << ") cannot be held: " << e.what() << "\n";
+        return 1;
+      }
+    }
   } catch (const std::exception& e) {
     std::cout << "usable: no: " << path << ": cannot open its " << s.space << " space: " << e.what()
               << "\n";

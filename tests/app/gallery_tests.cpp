@@ -2,11 +2,13 @@
 // and the view on the headless EGL context with a real ImGui context, asserting on state.
 #include <epoxy/gl.h>
 #include <imgui.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 
 #include <catch2/catch.hpp>
@@ -14,8 +16,10 @@
 
 #include "app/gallery_app.hpp"
 #include "app/gallery_controller.hpp"
+#include "app/gallery_layout.hpp"
 #include "app/gallery_view.hpp"
 #include "app/session_store.hpp"
+#include "app/ui_prefs.hpp"
 #include "render/headless_context.hpp"
 #include "render/photo_renderer.hpp"
 #include "spaces/photo_enhancement.hpp"
@@ -987,4 +991,174 @@ TEST_CASE("asking for more components than the body model has says so", "[galler
   c.begin_frame(0.2);
   CHECK(c.message().kind == app::MessageKind::kSuccess);
   CHECK(c.space().dimensions() == 8);
+}
+
+// A click, then a frame long after it so that its zoom animation has ended.
+double click_and_settle(GalleryController& c, int col, int row, double t) {
+  c.queue(intent::ClickCell{col, row});
+  c.begin_frame(t);
+  c.begin_frame(t + 5.0);
+  return t + 10.0;
+}
+
+TEST_CASE("a second window on the same session views it read-only and never saves over it",
+          "[gallery][session-lock]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  auto o = options(session);
+  o.resume = app::ResumePolicy::kYes;
+  GalleryController a(o, &spaces::open_space, 0.0);
+  CHECK_FALSE(a.open_elsewhere());
+  (void)click_and_settle(a, 0, 0, 0.0);
+  (void)click_and_settle(a, 1, 1, 5.0);
+  REQUIRE(app::read_session_file(session).clicks_on_plane() == 2);
+  {
+    auto ask = o;
+    ask.resume = app::ResumePolicy::kAsk;
+    GalleryController b(ask, &spaces::open_space, 0.0);
+    CHECK(b.open_elsewhere());
+    CHECK_FALSE(b.autosave_enabled());
+    CHECK_THAT(b.autosave_problem(), Catch::Contains("open in another window"));
+    REQUIRE(b.resume_candidate() != nullptr);  // offered read-only
+    b.queue(intent::Resume{});
+    b.begin_frame(0.1);
+    CHECK(b.session().clicks_on_plane() == 2);
+    (void)click_and_settle(b, 2, 2, 5.0);
+    b.save_now();  // as at exit
+    CHECK(b.session().clicks_on_plane() == 3);
+  }
+  // B's click and exit changed nothing on disk; A continues and saves.
+  CHECK(app::read_session_file(session).clicks_on_plane() == 2);
+  CHECK_FALSE(fs::exists(fs::path(session.string() + ".previous")));
+  (void)click_and_settle(a, 2, 0, 10.0);
+  CHECK(app::read_session_file(session).clicks_on_plane() == 3);
+}
+
+TEST_CASE("a new search in a read-only window moves nothing aside", "[gallery][session-lock]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  auto o = options(session);
+  o.resume = app::ResumePolicy::kYes;
+  GalleryController a(o, &spaces::open_space, 0.0);
+  (void)click_and_settle(a, 0, 0, 0.0);
+  auto ask = o;
+  ask.resume = app::ResumePolicy::kAsk;
+  GalleryController b(ask, &spaces::open_space, 0.0);
+  REQUIRE(b.open_elsewhere());
+  b.queue(intent::StartNew{});
+  b.begin_frame(0.1);
+  (void)click_and_settle(b, 1, 1, 5.0);
+  b.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
+  b.begin_frame(10.0);
+  CHECK_FALSE(fs::exists(fs::path(session.string() + ".previous")));
+  CHECK(app::read_session_file(session).clicks_on_plane() == 1);
+}
+
+TEST_CASE("the lock goes with the window: a later window owns the session again",
+          "[gallery][session-lock]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  auto o = options(session);
+  o.resume = app::ResumePolicy::kYes;
+  {
+    GalleryController a(o, &spaces::open_space, 0.0);
+    (void)click_and_settle(a, 0, 0, 0.0);
+  }
+  GalleryController b(o, &spaces::open_space, 0.0);
+  CHECK_FALSE(b.open_elsewhere());
+  CHECK(b.session().clicks_on_plane() == 1);
+  (void)click_and_settle(b, 1, 1, 5.0);
+  CHECK(app::read_session_file(session).clicks_on_plane() == 2);
+}
+
+TEST_CASE("a window never saves over a session file another program replaced",
+          "[gallery][session-lock]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  auto o = options(session);
+  o.resume = app::ResumePolicy::kYes;
+  GalleryController a(o, &spaces::open_space, 0.0);
+  (void)click_and_settle(a, 0, 0, 0.0);
+  // Another writer (an older build without the lock, a copy from a backup) replaces the file.
+  {
+    app::Session other = app::read_session_file(session);
+    other.click({2, 2});
+    other.click({2, 2});
+    app::save_session(other, session);
+  }
+  const std::string replaced = [&] {
+    std::ifstream in(session);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  (void)click_and_settle(a, 1, 1, 5.0);
+  a.save_now();
+  const std::string after = [&] {
+    std::ifstream in(session);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const bool unchanged = after == replaced;  // not CHECK(a == b): Catch would print both files
+  CHECK(unchanged);
+  CHECK(app::read_session_file(session).clicks_on_plane() == 3);
+  CHECK_FALSE(a.autosave_enabled());
+  CHECK_THAT(a.autosave_problem(), Catch::Contains("changed by another window"));
+  // This window's own state is kept beside it.
+  int conflicts = 0;
+  for (const auto& e : fs::directory_iterator(dir.path)) {
+    if (e.path().filename().string().rfind("s.json.conflict-", 0) == 0) {
+      ++conflicts;
+      CHECK(app::read_session_file(e.path()).clicks_on_plane() == 2);
+    }
+  }
+  CHECK(conflicts == 1);
+}
+
+TEST_CASE("a ui.json that cannot be used is reported, set aside and replaced by defaults",
+          "[gallery][ui-prefs]") {
+  TempDir dir;
+  const fs::path path = dir.path / "ui.json";
+  const auto set_aside_count = [&] {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(dir.path)) {
+      if (e.path().filename().string().rfind("ui.json.corrupt-", 0) == 0) ++n;
+    }
+    return n;
+  };
+  SECTION("not JSON") {
+    std::ofstream(path) << "{\"window_width\": 1200,";
+  }
+  SECTION("nested 100,000 deep") {
+    std::ofstream(path) << "{\"save_folder\": " << std::string(100000, '[')
+                        << std::string(100000, ']') << "}";
+  }
+  SECTION("larger than 1 MB") {
+    std::ofstream(path) << "{\"save_name\": \"" << std::string(2u << 20, 'a') << "\"}";
+  }
+  SECTION("a pipe (opening it used to wait forever)") {
+    REQUIRE(::mkfifo(path.c_str(), 0600) == 0);
+  }
+  SECTION("a link to an endless device") {
+    fs::create_symlink("/dev/zero", path);
+  }
+  std::string problem;
+  const app::UiPrefs p = app::load_ui_prefs(path, &problem);
+  CHECK(p == app::UiPrefs{});
+  CHECK_THAT(problem, Catch::Contains("ui.json"));
+  CHECK_THAT(problem, Catch::Contains("using defaults"));
+  CHECK(problem.size() < 400);
+  CHECK(set_aside_count() == 1);
+  CHECK_FALSE(fs::exists(fs::symlink_status(path)));
+  // A good file next time reads without a problem.
+  REQUIRE(app::save_ui_prefs(app::UiPrefs{}, path));
+  std::string again;
+  (void)app::load_ui_prefs(path, &again);
+  CHECK(again.empty());
+}
+
+TEST_CASE("a remembered window size is fitted to the screen's work area", "[gallery][layout]") {
+  const app::WorkArea laptop{1280, 800};
+  CHECK(app::fit_window_to(1600, 1000, laptop) == std::pair<int, int>{1216, 760});
+  CHECK(app::fit_window_to(8192, 8192, laptop) == std::pair<int, int>{1216, 760});
+  CHECK(app::fit_window_to(1200, 700, laptop) == std::pair<int, int>{1200, 700});
+  CHECK(app::fit_window_to(1600, 1000, app::WorkArea{}) == std::pair<int, int>{1600, 1000});
+  CHECK(app::fit_window_to(1600, 1000, app::WorkArea{200, 100}) == std::pair<int, int>{320, 240});
 }

@@ -57,6 +57,52 @@ for bad in "$dir" "$dir/missing.json" /dev/zero; do
   if [ $rc -ne 1 ]; then echo "FAIL: $bad: exit $rc: $out"; failures=$((failures + 1)); else echo "ok: $bad: $out"; fi
 done
 
+# Saved holds the window would refuse: session-info says the session is unusable as saved.
+with_holds() {  # NAME HOLDS_JSON
+  /usr/bin/python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); j["holds"]=json.loads(sys.argv[2]); json.dump(j,open(sys.argv[3],"w"))' \
+    "$dir/good.json" "$2" "$dir/$1.json"
+}
+check_unusable() {  # NAME PATTERN
+  out=$(timeout 60 "$tool" session-info "$dir/$1.json" 2>&1)
+  rc=$?
+  if [ $rc -ne 1 ] || ! grep -Eq -- "$2" <<<"$out"; then
+    echo "FAIL: $1: exit $rc, /$2/ not in: $out"
+    failures=$((failures + 1))
+  else
+    echo "ok: $1: $(tail -1 <<<"$out")"
+  fi
+}
+with_holds holds-foo '[{"name": "foo", "value": 1.0}]'
+check_unusable holds-foo "holds .*cannot be held: unknown measurement 'foo'"
+with_holds holds-twice '[{"name": "height", "value": 1.7}, {"name": "height", "value": 1.8}]'
+check_unusable holds-twice "cannot be held: height is given twice"
+with_holds holds-out-of-reach '[{"name": "height", "value": 0.5}]'
+check_unusable holds-out-of-reach "cannot be held: out of reach.*nearest reachable: height"
+with_holds holds-good '[{"name": "height", "value": 1.7}]'
+out=$("$tool" session-info "$dir/holds-good.json" 2>&1)
+if ! grep -q "usable: yes" <<<"$out" || ! grep -q "holds: height 170.0 cm" <<<"$out"; then
+  echo "FAIL: a session with a reachable hold: $out"
+  failures=$((failures + 1))
+else
+  echo "ok: holds-good: $(grep holds: <<<"$out")"
+fi
+
+# Files that are not files: a FIFO as the session, or as a photo session's image, hung
+# session-info (and the window) waiting for a writer.
+mkfifo "$dir/fifo.json" "$dir/fifo.png"
+check_unusable fifo "fifo.json: a pipe, not a regular file"
+# The photo space opens its image through the same reader for session-info, the window and
+# render-grid (a photo session needs 12 dimensions; render-grid opens the same space).
+out=$(timeout 60 "$tool" render-grid --space photo --image "$dir/fifo.png" --cell 32 \
+  -o "$dir/photo.png" 2>&1)
+rc=$?
+if [ $rc -ne 1 ] || ! grep -q "fifo.png: a pipe, not a regular file" <<<"$out"; then
+  echo "FAIL: a FIFO as the photo: exit $rc: $out"
+  failures=$((failures + 1))
+else
+  echo "ok: a FIFO as the photo: $out"
+fi
+
 echo "$count broken fixtures checked, $failures failure(s)"
 [ "$count" -ge 20 ] || { echo "FAIL: too few fixtures"; exit 1; }
 [ $failures -eq 0 ]

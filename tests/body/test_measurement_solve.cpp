@@ -181,3 +181,33 @@ TEST_CASE("solve: holds on an SMPL-layout model (24 named joints, its own mesh)"
   CHECK(t.col(1).norm() < 0.2);
   CHECK(t.col(4).norm() > 0.9);
 }
+
+TEST_CASE("solve: height, mass and BMI that no body has together are refused up front", "[solve]") {
+  // 120 kg at 1.90 m is a BMI of 33.2: the solver used to name the unchanged start body as
+  // "nearest reachable".
+  CHECK_THROWS_WITH(
+      body::MeasurementConstraints(
+          default_model(), {target("bmi", 10.0), target("mass", 120.0), target("height", 1.9)}),
+      Catch::Contains("make a BMI of 33.2, not 10.0"));
+  CHECK_THROWS_WITH(
+      body::MeasurementConstraints(
+          default_model(), {target("height", 1.9), target("mass", 40.0), target("bmi", 40.0)}),
+      Catch::Contains("no body has all three"));
+  // Values that agree (within the tolerances) are accepted: 80 kg at 1.80 m is BMI 24.7.
+  CHECK_NOTHROW(body::MeasurementConstraints(
+      default_model(), {target("height", 1.80), target("mass", 80.0), target("bmi", 24.9)}));
+}
+
+TEST_CASE("solve: targets keep what is held, and a target against a hold is refused", "[solve]") {
+  const auto merged = body::targets_with_holds({target("mass", 80.0)}, {target("height", 1.80)});
+  REQUIRE(merged.size() == 2);
+  CHECK(std::string(merged[1].kind->name) == "height");
+  // The same value (within the hold tolerance) is one target, not "given twice".
+  CHECK(body::targets_with_holds({target("height", 1.805)}, {target("height", 1.80)}).size() == 1);
+  // A bare hold (no value yet) adds nothing.
+  CHECK(body::targets_with_holds({target("mass", 80.0)}, {target("height", std::nan(""))}).size() ==
+        1);
+  CHECK_THROWS_WITH(body::targets_with_holds({target("height", 1.70)}, {target("height", 1.80)}),
+                    Catch::Contains("target height 170.0 cm contradicts the hold on height at "
+                                    "180.0 cm"));
+}
