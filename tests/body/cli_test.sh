@@ -148,4 +148,25 @@ refuse "height 'nan' is not a number" "$exe" measure --model "$dir/cyl.npz" --ta
 refuse "unknown measurement 'weight'.*known: height, mass" \
   "$exe" measure --model "$dir/cyl.npz" --target weight=80
 refuse "mass '-3' is out of range" "$exe" export --model "$dir/cyl.npz" --target mass=-3 -o "$dir/m.glb"
+# Height, mass and BMI that no body has together: refused, not "nearest reachable: the start".
+refuse "make a BMI of 33.2, not 10.0" \
+  "$exe" measure --target bmi=10 --target mass=120 --target height=1.9
+
+echo "== bench-survey reads the survey tables it is given, or says what is wrong where"
+refuse "bench-survey needs --female, --male or both" "$exe" bench-survey
+refuse "nosuch.csv: no such file" "$exe" bench-survey --female "$dir/nosuch.csv"
+printf 'stature,weightkg\n1650,612\n' >"$dir/narrow.csv"
+refuse "narrow.csv: no column 'chestcircumference'" "$exe" bench-survey --male "$dir/narrow.csv"
+cols="stature,weightkg,chestcircumference,waistcircumference,buttockcircumference"
+cols+=",biacromialbreadth,crotchheight,acromionradialelength,radialestylionlength"
+row="1650,612,900,800,1000,360,780,310,240"
+printf '%s\n%s\n%s\n1650,61' "$cols" "$row" "$row" >"$dir/cut.csv"
+refuse "cut.csv: row 3 \(line 4\) has 2 fields, the header 9" "$exe" bench-survey --female "$dir/cut.csv"
+printf '%s\n%s\n1650,612,900,eight hundred,1000,360,780,310,240\n' "$cols" "$row" >"$dir/words.csv"
+refuse "words.csv: row 2 \(line 3\), column 'waistcircumference': 'eight hundred' is not a number" \
+  "$exe" bench-survey --female "$dir/words.csv"
+printf '%s\n%s\n%s\n' "$cols" "$row" "1700,700,950,850,1020,370,800,320,250" >"$dir/two.csv"
+out=$("$exe" bench-survey --female "$dir/two.csv" --samples 5 2>&1) || fail "bench-survey: $out"
+expect "$out" "model female \(5 bodies\) against ANSUR II women, two.csv \(2 people\)"
+expect "$out" "height +167.5"
 echo "body_cli: all checks passed"

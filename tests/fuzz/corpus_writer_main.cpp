@@ -5,12 +5,14 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "app/session_fixtures.hpp"
 #include "body/npz_fixtures.hpp"
+#include "sps/json_fields.hpp"
 
 namespace fs = std::filesystem;
 
@@ -71,13 +73,17 @@ int main(int argc, char** argv) {
     for (const auto& f : test_fixtures::broken_session_fixtures()) {
       write(root / "session" / (f.name + ".json"), f.text);
       try {
-        const auto b = nlohmann::json::parse(f.text);
+        // Bounded: the deep fixtures must never become a tree (dumping one overflows the stack).
+        const auto b = sps::json_fields::parse_bounded(f.text);
         if (b.is_object() && b.contains("search")) {
           write(root / "plane_search" / (f.name + ".json"), b.at("search").dump());
         }
-      } catch (const nlohmann::json::exception&) {
+      } catch (const std::runtime_error&) {
       }
     }
+    // The plane-search state nested 100,000 deep, as text.
+    write(root / "plane_search" / "deep.json",
+          "{\"format\": " + std::string(100000, '[') + std::string(100000, ']') + "}");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fuzz_corpus_writer: %s\n", e.what());
     return 1;

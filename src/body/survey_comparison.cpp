@@ -1,0 +1,141 @@
+#include "body/survey_comparison.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include "body/measurements.hpp"
+
+namespace body {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double percentile(const std::vector<double>& sorted, double p) {
+  const double pos = p * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const auto hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (pos - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+// The tool's value of a measure for one body (ratios from the girths).
+double model_value(const std::string& name, const Measurements& m) {
+  if (name == "waist/hips") return m.waist / m.hips;
+  if (name == "chest/hips") return m.chest / m.hips;
+  const MeasurementKind* kind = find_measurement(name);
+  if (kind == nullptr) throw std::logic_error("no measurement " + name);
+  return m.*(kind->field);
+}
+
+// The survey's value for one person, in SI.
+double survey_value(const SurveyMeasure& measure, const SurveyTable& table, Eigen::Index row) {
+  const auto col = [&](const std::string& c) { return table.values(row, table.column(c)); };
+  if (measure.name == "bmi") {
+    const double h = col("stature") * 0.001;
+    return col("weightkg") * 0.1 / (h * h);
+  }
+  if (measure.name == "waist/hips") return col("waistcircumference") / col("buttockcircumference");
+  if (measure.name == "chest/hips") return col("chestcircumference") / col("buttockcircumference");
+  double sum = 0.0;
+  for (const auto& c : measure.columns) sum += col(c);
+  return sum * measure.scale;
+}
+
+}  // namespace
+
+Distribution distribution_of(std::vector<double> values) {
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }),
+               values.end());
+  Distribution d;
+  d.count = static_cast<int>(values.size());
+  if (values.empty()) {
+    d.mean = d.sd = d.p5 = d.p50 = d.p95 = kNaN;
+    return d;
+  }
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  d.mean = sum / static_cast<double>(values.size());
+  double squares = 0.0;
+  for (const double v : values) squares += (v - d.mean) * (v - d.mean);
+  d.sd = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
+  std::sort(values.begin(), values.end());
+  d.p5 = percentile(values, 0.05);
+  d.p50 = percentile(values, 0.50);
+  d.p95 = percentile(values, 0.95);
+  return d;
+}
+
+const std::vector<SurveyMeasure>& survey_measures() {
+  // ANSUR II lengths are millimetres; weightkg is tenths of a kilogram. The tool's landmarks
+  // (src/body/measurements.hpp) follow the survey's: stature, chest, waist and buttock
+  // circumference, biacromial breadth, crotch height for the inseam, and acromion-radiale
+  // plus radiale-stylion for the arm.
+  static const std::vector<SurveyMeasure> measures = {
+      {"height", {"stature"}, 0.001},
+      {"mass", {"weightkg"}, 0.1},
+      {"bmi", {"stature", "weightkg"}, 1.0},
+      {"chest", {"chestcircumference"}, 0.001},
+      {"waist", {"waistcircumference"}, 0.001},
+      {"hips", {"buttockcircumference"}, 0.001},
+      {"shoulder_width", {"biacromialbreadth"}, 0.001},
+      {"inseam", {"crotchheight"}, 0.001},
+      {"arm_length", {"acromionradialelength", "radialestylionlength"}, 0.001},
+      {"waist/hips", {"waistcircumference", "buttockcircumference"}, 1.0},
+      {"chest/hips", {"chestcircumference", "buttockcircumference"}, 1.0},
+  };
+  return measures;
+}
+
+std::vector<std::string> survey_columns() {
+  std::vector<std::string> columns;
+  for (const auto& m : survey_measures()) {
+    for (const auto& c : m.columns) {
+      if (std::find(columns.begin(), columns.end(), c) == columns.end()) columns.push_back(c);
+    }
+  }
+  return columns;
+}
+
+PopulationComparison compare_with_survey(const Model& model,
+                                         const std::vector<const SurveyTable*>& survey, int samples,
+                                         unsigned seed) {
+  if (samples < 2 || samples > 100000) throw std::invalid_argument("samples must be 2..100000");
+  PopulationComparison out;
+  out.model_name = model.name;
+  out.bodies = samples;
+  const auto& measures = survey_measures();
+  std::vector<std::vector<double>> model_values(measures.size()), survey_values(measures.size());
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> n01(0.0f, 1.0f);
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXf betas(model.component_count());
+    for (Eigen::Index k = 0; k < betas.size(); ++k) betas[k] = n01(rng);
+    const Measurements m = measure(model, betas);
+    for (std::size_t i = 0; i < measures.size(); ++i) {
+      model_values[i].push_back(model_value(measures[i].name, m));
+    }
+  }
+  for (const SurveyTable* table : survey) {
+    out.people += static_cast<int>(table->values.rows());
+    for (Eigen::Index r = 0; r < table->values.rows(); ++r) {
+      for (std::size_t i = 0; i < measures.size(); ++i) {
+        survey_values[i].push_back(survey_value(measures[i], *table, r));
+      }
+    }
+  }
+  for (std::size_t i = 0; i < measures.size(); ++i) {
+    ComparisonRow row;
+    row.name = measures[i].name;
+    row.survey = distribution_of(survey_values[i]);
+    row.model = distribution_of(model_values[i]);
+    row.mean_gap_sd =
+        row.survey.sd > 0.0 ? (row.model.mean - row.survey.mean) / row.survey.sd : kNaN;
+    out.rows.push_back(row);
+  }
+  return out;
+}
+
+}  // namespace body

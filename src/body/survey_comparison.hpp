@@ -1,0 +1,51 @@
+// A body model's population against a survey's: the tool's measurements of bodies drawn as
+// the model is meant to be sampled (betas ~ N(0, I), the SMPL convention) beside the same
+// measurements of the surveyed people. What `bench-survey` prints (issue: body models measured
+// against ANSUR II).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "body/body_model.hpp"
+#include "body/survey_table.hpp"
+
+namespace body {
+
+struct Distribution {
+  double mean = 0.0, sd = 0.0, p5 = 0.0, p50 = 0.0, p95 = 0.0;
+  int count = 0;
+};
+// NaN values are skipped; an empty input gives count 0 and NaN statistics.
+Distribution distribution_of(std::vector<double> values);
+
+// One measurement as the survey takes it and as the tool does.
+struct SurveyMeasure {
+  std::string name;                  // the tool's name ("height") or a ratio ("waist/hips")
+  std::vector<std::string> columns;  // survey columns it needs
+  double scale = 0.001;              // survey unit -> SI (mm -> m; weightkg is 0.1 kg)
+};
+
+// The measures compared, and every survey column they need (for read_survey_csv).
+const std::vector<SurveyMeasure>& survey_measures();
+std::vector<std::string> survey_columns();
+
+struct ComparisonRow {
+  std::string name;
+  Distribution survey, model;
+  double mean_gap_sd = 0.0;  // (model mean - survey mean) / survey SD
+};
+
+struct PopulationComparison {
+  std::string model_name;
+  int bodies = 0, people = 0;
+  std::vector<ComparisonRow> rows;
+};
+
+// `samples` bodies of `model` (first `components` betas ~ N(0, 1), seeded) measured and
+// compared with `survey` (one table or two pooled, e.g. both sexes for the neutral model).
+PopulationComparison compare_with_survey(const Model& model,
+                                         const std::vector<const SurveyTable*>& survey, int samples,
+                                         unsigned seed);
+
+}  // namespace body
