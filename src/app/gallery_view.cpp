@@ -306,11 +306,21 @@ void GalleryView::draw_toolbar(GalleryController& c) {
 void GalleryView::draw_messages(const GalleryController& c) {
   // A failing autosave stays on screen until a save works again: the user must know that
   // clicks are not being kept.
+  if (c.open_elsewhere()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1));
+    ImGui::TextUnformatted(
+        "READ-ONLY -- this search is open in another window, so nothing here is saved. Close "
+        "that window to continue it here.");
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.autosave_problem().c_str());
+    return;
+  }
   if (!c.autosave_problem().empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1));
     ImGui::Text("AUTOSAVE IS FAILING -- your clicks are not being saved: %s",
                 c.autosave_problem().c_str());
     ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.autosave_problem().c_str());
     return;
   }
   const Message& m = c.message();
@@ -730,9 +740,10 @@ void GalleryView::note_widget(const std::string& name) {
 
 void GalleryView::draw_modals(GalleryController& c) {
   if (c.resume_candidate() != nullptr) {
-    if (!ImGui::IsPopupOpen("Resume session?")) ImGui::OpenPopup("Resume session?");
-    if (ImGui::BeginPopupModal("Resume session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      const bool elsewhere = c.open_elsewhere();
+    const bool elsewhere = c.open_elsewhere();
+    const char* title = elsewhere ? "Open in another window" : "Resume session?";
+    if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+    if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       ImGui::Text(elsewhere ? "This search is open in another window: %s"
                             : "A previous session was found: %s",
                   c.session_path().string().c_str());

@@ -1162,3 +1162,21 @@ TEST_CASE("a remembered window size is fitted to the screen's work area", "[gall
   CHECK(app::fit_window_to(1600, 1000, app::WorkArea{}) == std::pair<int, int>{1600, 1000});
   CHECK(app::fit_window_to(1600, 1000, app::WorkArea{200, 100}) == std::pair<int, int>{320, 240});
 }
+
+TEST_CASE("starting anew says where the previous session was kept, in words that read",
+          "[gallery]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  {
+    GalleryController first(options(session), &spaces::open_space, 0.0);
+    (void)click_and_settle(first, 1, 1, 0.0);
+  }
+  auto o = options(session);
+  o.resume = app::ResumePolicy::kAsk;
+  GalleryController c(o, &spaces::open_space, 0.0);
+  c.queue(intent::StartNew{});
+  c.begin_frame(0.1);
+  // Was "new session; the previous one is it as ...".
+  CHECK_THAT(c.message().text, Catch::Equals("new session; the previous one is kept as " +
+                                             session.string() + ".previous"));
+}
