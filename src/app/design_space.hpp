@@ -64,6 +64,7 @@ struct TargetSolve {
 // The window's measurements panel (issue 13): what the view keeps between frames.
 struct MeasurementPanelState {
   bool imperial = false;
+  bool all_rows = false;  // also the secondary measurements (a body's limbs and neck)
   std::vector<std::string> target_text;  // typed targets, one per measurement_names()
 };
 // What the user asked for in the panel this frame.

@@ -102,10 +102,7 @@ MeasurementConstraints::MeasurementConstraints(std::shared_ptr<const Model> mode
       }
     }
     girths_ = girths_ || t.kind->needs_girths;
-    const std::string name = t.kind->name;
-    if (name == "chest") bands_ |= kChestBand;
-    if (name == "waist") bands_ |= kWaistBand;
-    if (name == "hips") bands_ |= kHipsBand;
+    bands_ |= girth_band(*t.kind);
     tolerance_[static_cast<Eigen::Index>(i)] = tolerance_share * t.kind->hold_tolerance;
   }
   check_bmi_agrees(targets_);

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 
@@ -119,6 +120,118 @@ double arm_length(const Model& model, const BodyMesh& mesh) {
   return 0.5 * sum;
 }
 
+// Slices across a limb or the neck look this far from the bone: farther than any limb's
+// surface (a thigh of 80 cm girth has a radius under 13 cm), nearer than most of the torso.
+constexpr double kLimbRadius = 0.25;
+
+// The girth of the slice across `direction` at `origin` (the piece around the origin); 0 when
+// the plane misses the body there.
+double girth_across(const BodyMesh& mesh, const Faces& faces, const Eigen::Vector3d& origin,
+                    const Eigen::Vector3d& direction) {
+  return piece_girth(slice_mesh(mesh.vertices, faces, plane_across(origin, direction), kLimbRadius),
+                     Eigen::Vector2d::Zero());
+}
+
+// How far the slice piece around `origin` reaches along `outward` (a unit vector in the plane).
+double reach_across(const BodyMesh& mesh, const Faces& faces, const Eigen::Vector3d& origin,
+                    const Eigen::Vector3d& direction, const Eigen::Vector3d& outward) {
+  const SlicePlane plane = plane_across(origin, direction);
+  const Eigen::Vector2d out(outward.dot(plane.u), outward.dot(plane.v));
+  double best = 0.0;
+  for (const auto& piece : slice_mesh(mesh.vertices, faces, plane, kLimbRadius)) {
+    const auto hull = convex_hull(piece.points);
+    if (!hull_contains(hull, Eigen::Vector2d::Zero())) continue;
+    for (const auto& p : hull) best = std::max(best, p.dot(out));
+  }
+  return best;
+}
+
+// A bone: the segment from joint `from` to joint `to` ("left_knee" -> "left_ankle").
+struct Bone {
+  Eigen::Vector3d a, b;
+  bool found = false;
+  Eigen::Vector3d at(double t) const { return a + t * (b - a); }
+};
+
+Bone bone(const Model& model, const BodyMesh& mesh, const std::string& from,
+          const std::string& to) {
+  Bone result;
+  const int i = joint_index(model, mesh, from.c_str());
+  const int j = joint_index(model, mesh, to.c_str());
+  if (i < 0 || j < 0) return result;
+  result.a = joint(mesh, i);
+  result.b = joint(mesh, j);
+  result.found = (result.b - result.a).norm() > 1e-6;
+  return result;
+}
+
+// The largest girth across `b` at the fractions `ts` of its length.
+double largest_girth(const BodyMesh& mesh, const Faces& faces, const Bone& b,
+                     std::initializer_list<double> ts) {
+  double best = 0.0;
+  for (const double t : ts) best = std::max(best, girth_across(mesh, faces, b.at(t), b.b - b.a));
+  return best;
+}
+
+// The limb girths and the bideltoid breadth (see measurements.hpp); `crotch` is the crotch's
+// absolute height (NaN if none).
+void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces, double H,
+                   double crotch, unsigned bands, Measurements& m) {
+  if ((bands & kNeckBand) != 0) {
+    const Bone neck = bone(model, mesh, "neck", "head");
+    m.neck = neck.found ? girth_across(mesh, faces, neck.at(0.5), neck.b - neck.a) : kNaN;
+  }
+  double upper_arm = 0.0, deltoids = 0.0, thigh = 0.0, calf = 0.0;
+  const double centre_x = mesh.vertices.col(0).cast<double>().mean();
+  bool arms = true, legs = true;
+  for (const char* side : {"left", "right"}) {
+    const std::string s(side);
+    if ((bands & kArmBand) != 0) {
+      const Bone arm = bone(model, mesh, s + "_shoulder", s + "_elbow");
+      if (!arm.found) {
+        arms = false;
+      } else {
+        upper_arm += largest_girth(mesh, faces, arm, {0.4, 0.5, 0.6});
+        // Outward: the body's side direction (+x for the left side of an SMPL-family body
+        // facing +z) made perpendicular to the humerus.
+        const Eigen::Vector3d axis = (arm.b - arm.a).normalized();
+        const Eigen::Vector3d side_x(arm.a.x() >= centre_x ? 1.0 : -1.0, 0.0, 0.0);
+        const Eigen::Vector3d outward = (side_x - side_x.dot(axis) * axis).normalized();
+        double reach = 0.0;
+        for (const double t : {0.1, 0.2, 0.3}) {
+          reach = std::max(reach, reach_across(mesh, faces, arm.at(t), axis, outward));
+        }
+        deltoids += reach;
+      }
+    }
+    if ((bands & kLegBand) != 0) {
+      const Bone femur = bone(model, mesh, s + "_hip", s + "_knee");
+      const Bone shin = bone(model, mesh, s + "_knee", s + "_ankle");
+      if (!femur.found || !shin.found) {
+        legs = false;
+      } else {
+        // The point of the femur 1% of H below the crotch (a quarter of the way down without
+        // one), kept in the thigh's upper half.
+        double t = 0.25;
+        const double drop = femur.a.y() - femur.b.y();
+        if (std::isfinite(crotch) && drop > 1e-6) t = (femur.a.y() - (crotch - 0.01 * H)) / drop;
+        t = std::clamp(t, 0.05, 0.5);
+        thigh += girth_across(mesh, faces, femur.at(t), femur.b - femur.a);
+        calf += largest_girth(mesh, faces, shin, {0.2, 0.3, 0.4, 0.5});
+      }
+    }
+  }
+  if ((bands & kArmBand) != 0) {
+    m.upper_arm = arms ? 0.5 * upper_arm : kNaN;
+    const double shoulders = shoulder_width(model, mesh);
+    m.bideltoid = arms && std::isfinite(shoulders) ? shoulders + deltoids : kNaN;
+  }
+  if ((bands & kLegBand) != 0) {
+    m.thigh = legs ? 0.5 * thigh : kNaN;
+    m.calf = legs ? 0.5 * calf : kNaN;
+  }
+}
+
 // The crotch: the highest downward-facing triangle that the vertical line (x, z) crosses
 // below `ceiling` (absolute y); NaN if none.
 double crotch_y(const Vertices& vertices, const Faces& faces, double x, double z, double ceiling) {
@@ -182,6 +295,7 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
     if (y - ymin > 0.2 * H) m.inseam = y - ymin;
   }
   if (!girths) return m;
+  measure_limbs(model, mesh, model.faces, H, ymin + m.inseam, bands, m);
   const double ax = mesh.vertices.col(0).cast<double>().mean();
   const double az = mesh.vertices.col(2).cast<double>().mean();
   const int steps = 200;
@@ -255,6 +369,16 @@ const std::vector<MeasurementKind>& measurement_kinds() {
        "e.g. 31in"},
       {"arm_length", "Arm length", Quantity::kLength, &Measurements::arm_length, false, 0.01,
        "e.g. 55cm", "e.g. 22in"},
+      {"neck", "Neck", Quantity::kLength, &Measurements::neck, true, 0.01, "e.g. 37cm",
+       "e.g. 15in"},
+      {"bideltoid", "Deltoid breadth", Quantity::kLength, &Measurements::bideltoid, true, 0.01,
+       "e.g. 47cm", "e.g. 18in"},
+      {"upper_arm", "Upper arm", Quantity::kLength, &Measurements::upper_arm, true, 0.01,
+       "e.g. 31cm", "e.g. 12in"},
+      {"thigh", "Thigh", Quantity::kLength, &Measurements::thigh, true, 0.01, "e.g. 58cm",
+       "e.g. 23in"},
+      {"calf", "Calf", Quantity::kLength, &Measurements::calf, true, 0.01, "e.g. 37cm",
+       "e.g. 15in"},
   };
   return kinds;
 }
@@ -264,6 +388,17 @@ const MeasurementKind* find_measurement(const std::string& name) {
     if (name == k.name) return &k;
   }
   return nullptr;
+}
+
+unsigned girth_band(const MeasurementKind& kind) {
+  const std::string name = kind.name;
+  if (name == "chest") return kChestBand;
+  if (name == "waist") return kWaistBand;
+  if (name == "hips") return kHipsBand;
+  if (name == "neck") return kNeckBand;
+  if (name == "bideltoid" || name == "upper_arm") return kArmBand;
+  if (name == "thigh" || name == "calf") return kLegBand;
+  return 0;
 }
 
 std::string measurement_names() {

@@ -30,6 +30,13 @@ struct Measurements {
   double shoulder_width = 0.0;  // biacromial breadth
   double inseam = 0.0;          // crotch to sole
   double arm_length = 0.0;      // shoulder - elbow - wrist
+  // Girths and a breadth across the limbs and the neck, from slices perpendicular to a bone
+  // (see below); NaN when the model lacks the joints, 0 when not taken (`bands`).
+  double neck = 0.0;       // neck circumference, mid-neck
+  double bideltoid = 0.0;  // breadth across the deltoids
+  double upper_arm = 0.0;  // upper-arm (biceps) circumference, relaxed
+  double thigh = 0.0;      // thigh circumference below the gluteal furrow
+  double calf = 0.0;       // calf circumference, its largest
 };
 
 // Whole-body density, kg/m^3. Densitometry of adults gives about 1.06-1.07 g/cm^3 for lean
@@ -66,12 +73,35 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces);
 //           inner thighs, when they touch, face sideways or lie lower; without hip joints:
 //           the line through the mean vertex, below 0.6 H). NaN when that surface is the
 //           sole itself (no legs: a cylinder) or lies below 0.2 H.
+// The girths across the neck and limbs are taken on planes perpendicular to a bone (the
+// segment between two joints), as the survey takes them perpendicular to the limb's long axis
+// (ANSUR II, Gordon et al. 2014), so they do not depend on the pose of the arms:
+//   neck = girth at the middle of the neck -> head segment (the survey: just below the
+//          laryngeal prominence, perpendicular to the neck's axis);
+//   upper_arm = the largest girth at 40, 50 and 60% of shoulder -> elbow, both arms' mean (the
+//          survey's biceps circumference is taken flexed and reads 1-3 cm more);
+//   thigh = girth 1% of H below the crotch along hip -> knee (the survey: at the gluteal
+//          furrow), both legs' mean;
+//   calf = the largest girth at 20-50% of knee -> ankle, both legs' mean;
+//   bideltoid = the shoulder joints' distance plus, on each side, how far the deltoid reaches
+//          out from the humerus (the largest lateral extent of the upper-arm slices at 10-30%
+//          of shoulder -> elbow): the survey's breadth across the deltoids with the arms
+//          hanging, whatever the rest pose's arm angle.
+// Each girth is the convex hull of the slice piece around the bone, as a tape would lie.
 // `girths` = false skips the slices (chest, waist, hips stay 0): the rest costs one pass over
 // the vertices and faces (well under a millisecond on the default model, against ~11 ms
 // with the slices), for callers that need only those (holds, targets).
 // `bands` picks the girths taken (the others stay 0): holding or solving for one girth slices
 // only its band (the hips need the waist's slice, so kHipsBand takes the waist too).
-enum GirthBand : unsigned { kChestBand = 1, kWaistBand = 2, kHipsBand = 4, kAllBands = 7 };
+enum GirthBand : unsigned {
+  kChestBand = 1,
+  kWaistBand = 2,
+  kHipsBand = 4,
+  kNeckBand = 8,  // neck
+  kArmBand = 16,  // upper_arm, bideltoid
+  kLegBand = 32,  // thigh, calf
+  kAllBands = 63
+};
 Measurements measure(const Model& model, const BodyMesh& mesh, bool girths = true,
                      unsigned bands = kAllBands);
 
@@ -102,6 +132,8 @@ struct MeasurementKind {
 const std::vector<MeasurementKind>& measurement_kinds();
 // nullptr if no measurement has that name.
 const MeasurementKind* find_measurement(const std::string& name);
+// The girth band a measurement needs (GirthBand; 0 for those without slices).
+unsigned girth_band(const MeasurementKind& kind);
 // "height, mass, bmi, ..." for messages.
 std::string measurement_names();
 

@@ -1,9 +1,12 @@
 #include "body/mesh_slice.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <unordered_map>
+
+#include <Eigen/Geometry>
 
 namespace body {
 
@@ -25,6 +28,22 @@ struct UnionFind {
   }
   void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
 };
+
+// The points grouped by the pieces they were joined into.
+std::vector<SlicePiece> gather_pieces(const std::vector<Eigen::Vector2d>& points, UnionFind& uf) {
+  std::unordered_map<int, std::size_t> piece_of_root;
+  std::vector<SlicePiece> pieces;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const int root = uf.find(static_cast<int>(p));
+    auto it = piece_of_root.find(root);
+    if (it == piece_of_root.end()) {
+      it = piece_of_root.emplace(root, pieces.size()).first;
+      pieces.emplace_back();
+    }
+    pieces[it->second].points.push_back(points[p]);
+  }
+  return pieces;
+}
 
 // The slice through the faces listed (ascending face order, as a pass over all faces visits
 // them), or through every face when `face_ids` is null.
@@ -64,21 +83,73 @@ std::vector<SlicePiece> slice_faces(const Vertices& vertices, const Faces& faces
     }
     if (n == 2) uf.unite(ids[0], ids[1]);
   }
-  std::unordered_map<int, std::size_t> piece_of_root;
-  std::vector<SlicePiece> pieces;
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    const int root = uf.find(static_cast<int>(p));
-    auto it = piece_of_root.find(root);
-    if (it == piece_of_root.end()) {
-      it = piece_of_root.emplace(root, pieces.size()).first;
-      pieces.emplace_back();
-    }
-    pieces[it->second].points.push_back(points[p]);
-  }
-  return pieces;
+  return gather_pieces(points, uf);
 }
 
 }  // namespace
+
+SlicePlane plane_across(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
+  SlicePlane p;
+  p.origin = origin;
+  p.normal = direction.normalized();
+  // u from the world axis least aligned with the normal, so the basis never degenerates.
+  Eigen::Index axis = 0;
+  p.normal.cwiseAbs().minCoeff(&axis);
+  const Eigen::Vector3d seed = Eigen::Vector3d::Unit(axis);
+  p.u = (seed - seed.dot(p.normal) * p.normal).normalized();
+  p.v = p.normal.cross(p.u);
+  return p;
+}
+
+std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
+                                   const SlicePlane& plane, double radius) {
+  // Signed distances once per vertex; a vertex exactly on the plane counts as above (as in
+  // slice_faces), so every crossing lies strictly inside an edge.
+  Eigen::VectorXd distance(vertices.rows());
+  for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
+    distance[i] = (vertices.row(i).cast<double>().transpose() - plane.origin).dot(plane.normal);
+  }
+  std::unordered_map<std::uint64_t, int> edge_point;
+  std::vector<Eigen::Vector2d> points;
+  UnionFind uf;
+  auto point_on = [&](std::uint32_t a, std::uint32_t b) {
+    if (a > b) std::swap(a, b);
+    const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | b;
+    const auto it = edge_point.find(key);
+    if (it != edge_point.end()) return it->second;
+    const double t = distance[a] / (distance[a] - distance[b]);
+    const Eigen::Vector3d pa = vertices.row(a).cast<double>().transpose();
+    const Eigen::Vector3d pb = vertices.row(b).cast<double>().transpose();
+    const Eigen::Vector3d q = pa + t * (pb - pa) - plane.origin;
+    points.emplace_back(q.dot(plane.u), q.dot(plane.v));
+    const int id = uf.add();
+    edge_point.emplace(key, id);
+    return id;
+  };
+  for (Eigen::Index i = 0; i < faces.rows(); ++i) {
+    const std::uint32_t v[3] = {faces(i, 0), faces(i, 1), faces(i, 2)};
+    if (v[0] >= vertices.rows() || v[1] >= vertices.rows() || v[2] >= vertices.rows()) continue;
+    const bool up[3] = {distance[v[0]] >= 0.0, distance[v[1]] >= 0.0, distance[v[2]] >= 0.0};
+    if (up[0] == up[1] && up[1] == up[2]) continue;
+    if (std::isfinite(radius)) {
+      bool near = false;
+      for (const auto corner : v) {
+        near = near ||
+               (vertices.row(corner).cast<double>().transpose() - plane.origin).squaredNorm() <=
+                   radius * radius;
+      }
+      if (!near) continue;
+    }
+    int ids[2];
+    int n = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int a = e, b = (e + 1) % 3;
+      if (up[a] != up[b]) ids[n++] = point_on(v[a], v[b]);
+    }
+    if (n == 2) uf.unite(ids[0], ids[1]);
+  }
+  return gather_pieces(points, uf);
+}
 
 std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h) {
   return slice_faces(vertices, faces, h, nullptr);

@@ -1,6 +1,8 @@
-// Slicing a triangle mesh with a horizontal plane y = h into connected cross-sections.
+// Slicing a triangle mesh with a plane (horizontal y = h, or any plane) into connected
+// cross-sections.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,5 +31,22 @@ std::vector<std::vector<Eigen::Index>> faces_crossing(const Vertices& vertices, 
                                                       const std::vector<double>& heights);
 std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h,
                                    const std::vector<Eigen::Index>& face_ids);
+
+// A plane in any direction, for slices across a limb: `origin` on the plane, `normal` its unit
+// normal, `u` and `v` unit vectors spanning it (both perpendicular to the normal and to each
+// other). Points of its slice are given as ((p - origin) . u, (p - origin) . v).
+struct SlicePlane {
+  Eigen::Vector3d origin, normal, u, v;
+};
+// The plane through `origin` perpendicular to `direction` (need not be unit; not zero), with u
+// and v chosen from the world axes.
+SlicePlane plane_across(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction);
+
+// The connected pieces of the slice of the mesh with that plane (as slice_mesh does for y = h).
+// With `radius` only faces with a corner within that distance of the origin are cut: a slice
+// across a limb then leaves the torso it would also cross alone (and costs a fraction).
+std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
+                                   const SlicePlane& plane,
+                                   double radius = std::numeric_limits<double>::infinity());
 
 }  // namespace body

@@ -71,8 +71,9 @@ Distribution distribution_of(std::vector<double> values) {
 const std::vector<SurveyMeasure>& survey_measures() {
   // ANSUR II lengths are millimetres; weightkg is tenths of a kilogram. The tool's landmarks
   // (src/body/measurements.hpp) follow the survey's: stature, chest, waist and buttock
-  // circumference, biacromial breadth, crotch height for the inseam, and acromion-radiale
-  // plus radiale-stylion for the arm.
+  // circumference, biacromial breadth, crotch height for the inseam, acromion-radiale plus
+  // radiale-stylion for the arm, and the neck, deltoid, biceps (flexed in the survey), thigh
+  // and calf measures.
   static const std::vector<SurveyMeasure> measures = {
       {"height", {"stature"}, 0.001},
       {"mass", {"weightkg"}, 0.1},
@@ -83,6 +84,11 @@ const std::vector<SurveyMeasure>& survey_measures() {
       {"shoulder_width", {"biacromialbreadth"}, 0.001},
       {"inseam", {"crotchheight"}, 0.001},
       {"arm_length", {"acromionradialelength", "radialestylionlength"}, 0.001},
+      {"neck", {"neckcircumference"}, 0.001},
+      {"bideltoid", {"bideltoidbreadth"}, 0.001},
+      {"upper_arm", {"bicepscircumferenceflexed"}, 0.001},
+      {"thigh", {"thighcircumference"}, 0.001},
+      {"calf", {"calfcircumference"}, 0.001},
       {"waist/hips", {"waistcircumference", "buttockcircumference"}, 1.0},
       {"chest/hips", {"chestcircumference", "buttockcircumference"}, 1.0},
   };

@@ -33,11 +33,12 @@ int run(int argc_in, char** argv_in) {
                  "                                  [--target NAME=VALUE ...]\n\n"
                  "Prints height, chest, waist and hip circumferences (metres; convex hull of\n"
                  "horizontal slices, as a tape measure does), volume, mass, BMI, shoulder\n"
-                 "width, inseam and arm length (landmarks: src/body/measurements.hpp).\n\n"
+                 "width, inseam, arm length, and the neck, deltoid breadth, upper-arm, thigh and\n"
+                 "calf measures across the limbs (landmarks: src/body/measurements.hpp).\n\n"
                  "--target NAME=VALUE (repeatable) measures the body nearest to the given shape\n"
-                 "that meets the targets instead: names height, mass, bmi, chest, waist, hips,\n"
-                 "shoulder_width, inseam, arm_length; values in m, kg, kg/m^2 or with a unit\n"
-                 "(180cm, 71in, 187lb).\n";
+                 "that meets the targets instead: names " +
+                     body::measurement_names() +
+                     ";\nvalues in m, kg, kg/m^2 or with a unit (180cm, 71in, 187lb).\n";
     return 0;
   }
   args.reject_unknown({"model", "components", "betas", "x", "target"});
@@ -63,6 +64,11 @@ int run(int argc_in, char** argv_in) {
   length("shoulder_width", m.shoulder_width, "no left/right_shoulder joints");
   length("inseam", m.inseam, "no crotch between two legs");
   length("arm_length", m.arm_length, "no shoulder/elbow/wrist joints");
+  length("neck", m.neck, "no neck/head joints");
+  length("bideltoid", m.bideltoid, "no shoulder/elbow joints");
+  length("upper_arm", m.upper_arm, "no shoulder/elbow joints");
+  length("thigh", m.thigh, "no hip/knee joints");
+  length("calf", m.calf, "no knee/ankle joints");
   return 0;
 }
 

@@ -240,6 +240,11 @@ app::MeasurementPanelRequest BodySpace::draw_measurement_panel(
   if (ImGui::RadioButton("metric", !state.imperial)) state.imperial = false;
   ImGui::SameLine();
   if (ImGui::RadioButton("imperial", state.imperial)) state.imperial = true;
+  ImGui::SameLine();
+  ImGui::Checkbox("limbs and neck", &state.all_rows);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("Also show the neck, deltoid breadth, upper arm, thigh and calf");
+  }
   const auto held_name = [](const std::string& text) { return text.substr(0, text.find('=')); };
   const BodyCell* columns[3] = {static_cast<const BodyCell*>(best),
                                 static_cast<const BodyCell*>(start),
@@ -256,6 +261,14 @@ app::MeasurementPanelRequest BodySpace::draw_measurement_panel(
     ImGui::TableHeadersRow();
     for (std::size_t i = 0; i < kinds.size(); ++i) {
       const auto& k = kinds[i];
+      // The measures across the limbs are rows on request, so the side panel stays short;
+      // one that is held or has a typed target is always shown.
+      const bool secondary =
+          (body::girth_band(k) & (body::kNeckBand | body::kArmBand | body::kLegBand)) != 0;
+      const bool in_use = !state.target_text[i].empty() ||
+                          std::any_of(holds.begin(), holds.end(),
+                                      [&](const std::string& h) { return held_name(h) == k.name; });
+      if (secondary && !state.all_rows && !in_use) continue;
       ImGui::PushID(static_cast<int>(i));
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);

@@ -272,7 +272,7 @@ TEST_CASE("measurement names, formatting and typed values", "[measurements]") {
   REQUIRE(body::find_measurement("height") != nullptr);
   REQUIRE(body::find_measurement("shoulder_width") != nullptr);
   CHECK(body::find_measurement("weight") == nullptr);
-  CHECK(body::measurement_kinds().size() == 9);
+  CHECK(body::measurement_kinds().size() == 14);
   using body::Quantity;
   using body::Units;
   CHECK(body::format_measurement(Quantity::kLength, 1.8, Units::kMetric) == "180.0 cm");
@@ -382,4 +382,88 @@ TEST_CASE("each measurement's typed example parses, in both units, near an avera
     CHECK(m >= 0.7 * at_mean);
     CHECK(m <= 1.4 * at_mean);
   }
+}
+
+TEST_CASE("a slice across a tilted cylinder is its circle, whatever the tilt",
+          "[measurements][slice]") {
+  fixtures::Cylinder c;
+  c.radius = 0.05;
+  c.height = 0.6;
+  c.segments = 64;
+  c.rings = 31;
+  const auto arrays = fixtures::cylinder_model(c);
+  const auto model = load_cylinder(c, "tilted");
+  body::BodyMesh mesh = body::evaluate(model, Eigen::VectorXf::Zero(2));
+  // Tilt the cylinder (axis y) by 50 degrees about z, as an abducted upper arm lies.
+  const double a = 50.0 * kPi / 180.0;
+  Eigen::Matrix3f r;
+  r << static_cast<float>(std::cos(a)), static_cast<float>(-std::sin(a)), 0.0f,
+      static_cast<float>(std::sin(a)), static_cast<float>(std::cos(a)), 0.0f, 0.0f, 0.0f, 1.0f;
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+    mesh.vertices.row(i) = (r * mesh.vertices.row(i).transpose()).transpose();
+  }
+  const Eigen::Vector3d axis = (r.cast<double>() * Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d centre = r.cast<double>() * Eigen::Vector3d(0.0, c.base_y + 0.3, 0.0);
+  const body::SlicePlane plane = body::plane_across(centre, axis);
+  CHECK(plane.normal.dot(plane.u) == Approx(0.0).margin(1e-12));
+  CHECK(plane.u.dot(plane.v) == Approx(0.0).margin(1e-12));
+  CHECK(plane.v.norm() == Approx(1.0));
+  const auto pieces = body::slice_mesh(mesh.vertices, model.faces, plane);
+  REQUIRE(pieces.size() == 1);
+  const auto hull = body::convex_hull(pieces[0].points);
+  CHECK(body::hull_contains(hull, Eigen::Vector2d::Zero()));
+  // Single-precision vertices: a few micrometres.
+  CHECK(body::polygon_perimeter(hull) == Approx(polygon_girth(c.radius, c.segments)).margin(1e-5));
+  (void)arrays;
+}
+
+TEST_CASE("measure: neck, deltoid, upper-arm, thigh and calf on the built-in models",
+          "[measurements]") {
+  const auto female = body::measure(body::load_builtin_model("female", 10), Eigen::VectorXf());
+  const auto male = body::measure(body::load_builtin_model("male", 10), Eigen::VectorXf());
+  for (const auto* m : {&female, &male}) {
+    // Adult ranges (ANSUR II 1st-99th percentiles, both sexes, rounded out).
+    CHECK(m->neck > 0.28);
+    CHECK(m->neck < 0.50);
+    CHECK(m->bideltoid > 0.37);
+    CHECK(m->bideltoid < 0.62);
+    CHECK(m->bideltoid > m->shoulder_width + 0.04);  // the deltoids lie outside the joints
+    CHECK(m->upper_arm > 0.22);
+    CHECK(m->upper_arm < 0.45);
+    CHECK(m->thigh > 0.42);
+    CHECK(m->thigh < 0.80);
+    CHECK(m->thigh > m->calf);
+    CHECK(m->calf > 0.27);
+    CHECK(m->calf < 0.50);
+  }
+  // Men: the broader shoulders and the thicker neck and arms.
+  CHECK(male.bideltoid > female.bideltoid + 0.02);
+  CHECK(male.neck > female.neck);
+  CHECK(male.upper_arm > female.upper_arm);
+  // Each band alone reads as all bands do.
+  const auto model = body::load_builtin_model("neutral", 10);
+  const auto mesh = body::evaluate(model, Eigen::VectorXf::Zero(10));
+  const auto all = body::measure(model, mesh);
+  const auto neck = body::measure(model, mesh, true, body::kNeckBand);
+  CHECK(neck.neck == Approx(all.neck).epsilon(1e-12));
+  CHECK(neck.thigh == 0.0);
+  const auto arm = body::measure(model, mesh, true, body::kArmBand);
+  CHECK(arm.bideltoid == Approx(all.bideltoid).epsilon(1e-12));
+  CHECK(arm.upper_arm == Approx(all.upper_arm).epsilon(1e-12));
+  const auto leg = body::measure(model, mesh, true, body::kLegBand);
+  CHECK(leg.thigh == Approx(all.thigh).epsilon(1e-12));
+  CHECK(leg.calf == Approx(all.calf).epsilon(1e-12));
+  CHECK(leg.chest == 0.0);
+}
+
+TEST_CASE("measure: the limb measures are n/a without the joints they need", "[measurements]") {
+  fixtures::Cylinder c;
+  auto model = load_cylinder(c, "nolimbs");
+  model.joint_names.assign(model.joint_names.size(), "joint");
+  const auto m = body::measure(model, Eigen::VectorXf());
+  CHECK(std::isnan(m.neck));
+  CHECK(std::isnan(m.bideltoid));
+  CHECK(std::isnan(m.upper_arm));
+  CHECK(std::isnan(m.thigh));
+  CHECK(std::isnan(m.calf));
 }

@@ -81,9 +81,10 @@ TEST_CASE("a model's population is compared with the survey measure by measure",
   std::string csv =
       "stature,weightkg,chestcircumference,waistcircumference,"
       "buttockcircumference,biacromialbreadth,crotchheight,acromionradialelength,"
-      "radialestylionlength\n";
-  csv += "2000,1000,1000,900,1000,400,900,330,260\n";
-  csv += "2100,1100,1100,950,1050,420,950,340,270\n";
+      "radialestylionlength,neckcircumference,bideltoidbreadth,"
+      "bicepscircumferenceflexed,thighcircumference,calfcircumference\n";
+  csv += "2000,1000,1000,900,1000,400,900,330,260,400,500,350,600,400\n";
+  csv += "2100,1100,1100,950,1050,420,950,340,270,420,520,370,640,420\n";
   const auto table = body::read_survey_csv(write_csv("tall.csv", csv), body::survey_columns());
   const auto model = body::load_builtin_model("neutral", 10);
   const auto c = body::compare_with_survey(model, {&table}, 20, 3);
@@ -98,4 +99,7 @@ TEST_CASE("a model's population is compared with the survey measure by measure",
   CHECK(c.rows[2].name == "bmi");
   CHECK(c.rows[2].survey.mean == Approx((100.0 / 4.0 + 110.0 / 4.41) / 2.0));
   CHECK(c.rows[8].survey.mean == Approx(0.60));  // arm: acromion-radiale + radiale-stylion
+  CHECK(c.rows[9].name == "neck");
+  CHECK(c.rows[9].survey.mean == Approx(0.41));
+  CHECK(c.rows[9].model.mean > 0.3);
 }
