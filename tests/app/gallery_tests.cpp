@@ -1180,3 +1180,27 @@ TEST_CASE("starting anew says where the previous session was kept, in words that
   CHECK_THAT(c.message().text, Catch::Equals("new session; the previous one is kept as " +
                                              session.string() + ".previous"));
 }
+
+TEST_CASE("holds no body meets are refused in the window with the nearest reachable values",
+          "[gallery][holds]") {
+  TempDir dir;
+  GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
+  double t = 0.0;
+  for (const std::vector<std::string>& holds :
+       {std::vector<std::string>{"height=0.5"}, {"bmi=60"}, {"height=1.9", "mass=40", "bmi=40"}}) {
+    c.queue(intent::SetHolds{holds});
+    c.begin_frame(t += 1.0);
+    CHECK(c.holds().empty());
+    CHECK(c.message().kind == app::MessageKind::kError);
+    CHECK_THAT(c.message().text, Catch::Contains("cannot hold that"));
+  }
+  CHECK_THAT(c.message().text, Catch::Contains("no body has all three"));
+  // Typed targets are solved with the holds in force; one against a hold is refused.
+  c.queue(intent::SetHolds{{"height=1.80"}});
+  c.begin_frame(t += 1.0);
+  REQUIRE(c.holds().size() == 1);
+  c.queue(intent::GoToTargets{{"height=1.70"}});
+  c.begin_frame(t += 1.0);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK_THAT(c.message().text, Catch::Contains("contradicts the hold on height"));
+}

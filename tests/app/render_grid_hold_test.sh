@@ -73,4 +73,10 @@ refuse "is given twice" --hold height=1.8 --hold height=1.7
 # A target on a held measurement must agree with the hold.
 refuse "target height 170.0 cm contradicts the hold on height at 180.0 cm" \
   --hold height=1.8 --target height=1.7
+# The window's command line is checked the same way, before a window opens.
+if out=$("$APP" gallery --hold height=1.8 --target height=1.7 2>&1); then
+  echo "FAIL: gallery accepted a target against a hold"
+  exit 1
+fi
+grep -q "contradicts the hold on height" <<<"$out" || { echo "FAIL: gallery: $out"; exit 1; }
 echo "render_grid_hold: all checks passed"
