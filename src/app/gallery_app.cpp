@@ -192,6 +192,11 @@ void GalleryWindow::handle_keys() {
       screenshot_requested_ = true;
       continue;
     }
+    if (ctrl && p.key == GLFW_KEY_Q && !p.repeat) {
+      // As closing the window: the session is saved on the way out.
+      glfwSetWindowShouldClose(window_, GLFW_TRUE);
+      continue;
+    }
     if (c.resume_candidate() != nullptr) continue;
     if (ctrl && p.key == GLFW_KEY_S && !p.repeat) {
       view_->quick_save(c);

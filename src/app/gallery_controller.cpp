@@ -288,11 +288,12 @@ void GalleryController::undo_plane() {
   }
   const sps::Plane before = session_->search().current_plane();
   Session snapshot = *session_;
-  // One meaning: back to the start of the last finished plane. Session::undo_plane first
-  // drops the clicks on the current plane, then the finished plane.
+  // One meaning: back to the start of the last finished plane. Session::undo_plane drops the
+  // clicks on the current plane when there are any, else the last finished plane: so one call
+  // for the clicks, one for the plane, and never a third (it took a second plane away).
   if (session_->clicks_on_plane() > 0) session_->undo_plane();
   if (session_->undo_plane()) {
-    session_->undo_plane();  // the reopened plane starts without clicks
+    if (session_->clicks_on_plane() > 0) session_->undo_plane();  // reopened without clicks
     redo_.push_back(std::move(snapshot));
     inspected_ = -1;
     after_change(before);
@@ -500,6 +501,8 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
   session_ = std::move(session);
   install_perception();
   holds_.clear();
+  // A file saved by the previous search is not this search's: saving over it asks again.
+  last_export_.clear();
   // A resumed session's holds are held again at the first frame that may (before any from the
   // command line, which then replace them); the space checks them like typed ones.
   if (!session_->saved_holds().empty()) {

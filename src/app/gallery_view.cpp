@@ -95,6 +95,16 @@ std::string what_is_opened(const SpaceSettings& s) {
 
 }  // namespace
 
+fs::path default_save_folder() {
+  // The user's documents folder when there is one (XDG's default name), else the home folder;
+  // never the folder the program happened to be started from.
+  const char* home = std::getenv("HOME");
+  if (home == nullptr || home[0] != '/') return fs::current_path();
+  std::error_code ec;
+  const fs::path documents = fs::path(home) / "Documents";
+  return fs::is_directory(documents, ec) ? documents : fs::path(home);
+}
+
 GalleryView::GalleryView(ViewOptions options, UiPrefs prefs)
     : options_(std::move(options)), prefs_(std::move(prefs)) {
   open_model_file_ = prefs_.body_model_file;
@@ -159,7 +169,8 @@ void GalleryView::sync_space(GalleryController& c) {
   open_zoom_ = c.session().settings().zoom_levels;
   const std::string ext = fs::path(c.space().default_export_name()).extension().string();
   if (save_path_.empty() || fs::path(save_path_).extension() != ext) {
-    const fs::path folder = prefs_.save_folder.empty() ? fs::path() : fs::path(prefs_.save_folder);
+    const fs::path folder =
+        prefs_.save_folder.empty() ? default_save_folder() : fs::path(prefs_.save_folder);
     save_path_ = (folder / c.space().default_export_name()).string();
   }
 }
@@ -517,7 +528,8 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   ImGui::TextDisabled("Design space: %s", c.space().description().c_str());
   ImGui::TextDisabled("Session: %s%s", c.session_path().string().c_str(),
                       c.autosave_enabled() ? "" : " (autosave OFF)");
-  ImGui::TextDisabled("Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save",
+  ImGui::TextDisabled("Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save, "
+                      "Ctrl+Q quit",
                       c.session().settings().grid_size == 3 ? "1-9" : "A-Y");
   if (c.space().uses_camera()) ImGui::TextDisabled("Drag a cell to orbit all bodies");
 }
@@ -599,6 +611,11 @@ void GalleryView::draw_save(GalleryController& c) {
   if (ImGui::Button("Save##quick")) quick_save(c);
   ImGui::SameLine();
   if (ImGui::Button("Save as...")) open_save_dialog(c);
+  // Where Save writes, in full: a relative name is relative to the folder the program was
+  // started from, which the field alone does not say.
+  std::error_code ec;
+  const fs::path target = save_path_.empty() ? fs::path() : fs::absolute(save_path_, ec);
+  if (!target.empty()) ImGui::TextDisabled("saves to %s", target.string().c_str());
 }
 
 void GalleryView::draw_open(GalleryController& c) {

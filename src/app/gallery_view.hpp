@@ -31,6 +31,9 @@ struct ViewOptions {
   std::string file_dialog = "auto";
 };
 
+// Where Save puts a file when no folder was chosen yet: ~/Documents if it exists, else ~.
+std::filesystem::path default_save_folder();
+
 class GalleryView {
  public:
   GalleryView(ViewOptions options, UiPrefs prefs);
@@ -52,6 +55,10 @@ class GalleryView {
   // A file dropped on the window: the model or image for a new search (asks first if the
   // current search has progress).
   void open_dropped(GalleryController& c, const std::string& path);
+  // The file Save is asking before replacing, if it is asking.
+  const std::optional<std::filesystem::path>& overwrite_question() const {
+    return confirm_overwrite_;
+  }
   // A dialog or question is open (the window keeps polling).
   bool waiting_for_dialog() const { return desktop_dialog_.valid(); }
 

@@ -1204,3 +1204,69 @@ TEST_CASE("holds no body meets are refused in the window with the nearest reacha
   CHECK(c.message().kind == app::MessageKind::kError);
   CHECK_THAT(c.message().text, Catch::Contains("contradicts the hold on height"));
 }
+
+TEST_CASE("Undo plane takes back one plane, not two, with several planes done", "[gallery]") {
+  TempDir dir;
+  auto o = options(dir.path / "s.json");
+  o.zoom_levels = 2;
+  GalleryController c(o, &spaces::open_space, 0.0);
+  double t = 0.0;
+  for (int plane = 0; plane < 3; ++plane) t = finish_plane(c, t);
+  REQUIRE(c.session().planes_done() == 3);
+  t = click_and_settle(c, 1, 0, t);  // on plane 4
+  REQUIRE(c.session().clicks_on_plane() == 1);
+  c.queue(intent::UndoPlane{});
+  c.begin_frame(t);
+  // Was: planes_done() == 1 ("undid plane 2" from plane 4).
+  CHECK(c.session().planes_done() == 2);
+  CHECK(c.session().clicks_on_plane() == 0);
+  CHECK_THAT(c.message().text, Catch::Contains("undid plane 3"));
+  c.queue(intent::UndoPlane{});
+  c.begin_frame(t + 1.0);
+  CHECK(c.session().planes_done() == 1);
+}
+
+TEST_CASE("Save never replaces a file the current search did not write without asking",
+          "[gallery][gl][save]") {
+  TempDir dir;
+  app::UiPrefs prefs;
+  prefs.save_folder = dir.path.string();
+  prefs.save_name = "body.glb";
+  prefs.save_panel = true;
+  InProcessWindow w(options(dir.path / "s.json", "body"), prefs);
+  for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+  const fs::path file = dir.path / "body.glb";
+  w.view->quick_save(*w.c);
+  w.frame(ImVec2(-1, -1), false);
+  REQUIRE(fs::exists(file));
+  CHECK_FALSE(w.view->overwrite_question());
+  // Saving again in the same search replaces its own file without a question.
+  w.view->quick_save(*w.c);
+  CHECK_FALSE(w.view->overwrite_question());
+  w.frame(ImVec2(-1, -1), false);
+  const auto size_before = fs::file_size(file);
+  const auto time_before = fs::last_write_time(file);
+  // A new search on another model: the same name now asks first (it replaced a finished
+  // neutral body with a male one in the same file).
+  w.c->queue(intent::Open{app::SpaceSettings{"body", "male", 10}, 0, 4});
+  w.frame(ImVec2(-1, -1), false);
+  REQUIRE(w.c->space().settings().source == "male");
+  CHECK(w.c->last_export().empty());
+  w.view->quick_save(*w.c);
+  REQUIRE(w.view->overwrite_question());
+  CHECK(*w.view->overwrite_question() == file);
+  w.frame(ImVec2(-1, -1), false);
+  CHECK(fs::file_size(file) == size_before);
+  CHECK(fs::last_write_time(file) == time_before);
+}
+
+TEST_CASE("the default save folder is the documents folder, else home", "[gallery][save]") {
+  TempDir dir;
+  const char* old_home = std::getenv("HOME");
+  const std::string saved = old_home != nullptr ? old_home : "";
+  ::setenv("HOME", dir.path.c_str(), 1);
+  CHECK(app::default_save_folder() == dir.path);
+  fs::create_directories(dir.path / "Documents");
+  CHECK(app::default_save_folder() == dir.path / "Documents");
+  ::setenv("HOME", saved.c_str(), 1);
+}
