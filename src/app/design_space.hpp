@@ -87,7 +87,11 @@ class DesignSpace {
                           : std::filesystem::path(source).filename().string();
   }
   int dimensions() const { return settings().dimensions; }
+  // A short label for dimension i (the expert sliders): what moving it changes, in words a
+  // designer reads ("taller, heavier").
   virtual std::string dimension_name(int i) const = 0;
+  // More about it for a tooltip (its measured effect in numbers, its share of the variance).
+  virtual std::string dimension_details(int /*i*/) const { return {}; }
   // The paper's choices: 3x3 for bodies, 5x5 for photos.
   virtual int default_grid_size() const = 0;
   // Bodies are 3D (one shared orbit camera); photos are flat.
@@ -142,6 +146,14 @@ class DesignSpace {
                                     const Eigen::VectorXd& /*start*/,
                                     const std::vector<std::string>& /*held*/ = {}) const {
     throw std::invalid_argument("this design space has no measurements to aim for");
+  }
+
+  // One short line on how `cell` differs from `reference` (a body: its two most visible
+  // measurement changes, "taller 8.2 cm, heavier 9.6 kg"), drawn inside a hovered cell so
+  // that nothing covers the neighbours being compared. Empty: nothing to say.
+  virtual std::string cell_summary(const PreparedCell& /*cell*/,
+                                   const PreparedCell& /*reference*/) const {
+    return {};
   }
 
   // ImGui: the measurements panel, one row per measurement: the current best, the start and

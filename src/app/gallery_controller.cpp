@@ -158,15 +158,17 @@ void GalleryController::say(MessageKind kind, std::string text) {
 std::string GalleryController::resume_description() const {
   if (!pending_resume_) return "";
   const auto& s = pending_resume_->settings();
-  char text[512];
-  std::snprintf(
-      text, sizeof text,
-      "%s, %d dimensions, %dx%d grid; %d finished plane(s), %d click(s) on the current "
-      "plane",
-      pending_resume_space_ ? pending_resume_space_->description().c_str() : s.space.c_str(),
-      s.components, s.grid_size, s.grid_size, pending_resume_->planes_done(),
-      pending_resume_->clicks_on_plane());
-  return text;
+  // The space's description already counts its dimensions ("..., 10 components").
+  const std::string what = pending_resume_space_
+                               ? pending_resume_space_->description()
+                               : s.space + ", " + std::to_string(s.components) + " dimensions";
+  const int planes = pending_resume_->planes_done();
+  const int clicks = pending_resume_->clicks_on_plane();
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "; %dx%d grid; %d finished plane%s, %d click%s on the current plane", s.grid_size,
+                s.grid_size, planes, planes == 1 ? "" : "s", clicks, clicks == 1 ? "" : "s");
+  return what + text;
 }
 
 void GalleryController::begin_frame(double now_seconds) {
@@ -217,7 +219,7 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::StartOver&) { start_over(); }, [&](const intent::Open& o) { open(o); },
           [&](const intent::Resume&) { resume(); }, [&](const intent::StartNew&) { start_new(); },
           [&](const intent::Export& e) { export_point(e.path); },
-          [&](const intent::UsePoint& u) { use_point(u.x); },
+          [&](const intent::UsePoint& u) { use_point(u.x, "the slider values", true); },
           [&](const intent::SetHolds& h) { set_holds(h.holds); },
           [&](const intent::GoToTargets& t) { go_to_targets(t.targets); },
           [&](const intent::Inspect& n) {
@@ -253,6 +255,9 @@ void GalleryController::click(const intent::ClickCell& c) {
   if (r == ClickResult::kPlaneFinished) {
     // A plane that ends before its last zoom level says why in plain words (issue 9).
     const std::string note = session_->plane_note();
+    // Kept for the message that announces the next plane, which would otherwise replace it
+    // within a second.
+    finished_plane_note_ = note;
     say(MessageKind::kInfo, note.empty() ? "choice submitted; computing the next plane..."
                                          : note + " Computing the next plane...");
   }
@@ -364,12 +369,21 @@ void GalleryController::start_new() {
   keep_old_session_file("");
 }
 
-void GalleryController::use_point(const Eigen::VectorXd& x) {
+void GalleryController::use_point(const Eigen::VectorXd& given, const std::string& what,
+                                  bool onto_holds) {
   if (busy() || worker_.busy()) return;
-  if (x.size() != space_->dimensions() || !x.allFinite() || x.minCoeff() < 0.0 ||
-      x.maxCoeff() > 1.0) {
-    say(MessageKind::kError, "the slider values are outside the search box");
+  if (given.size() != space_->dimensions() || !given.allFinite() || given.minCoeff() < 0.0 ||
+      given.maxCoeff() > 1.0) {
+    say(MessageKind::kError, what + ": outside the search box");
     return;
+  }
+  Eigen::VectorXd x = given;
+  std::string held_note;
+  if (const auto* projector = session_->constraint_projector(); onto_holds && projector) {
+    if (const auto surface = projector->search_hold()) {
+      x = surface->project(given);
+      held_note = ", moved onto the holds (" + projector->description() + ")";
+    }
   }
   const Eigen::VectorXd previous_best = session_->current_best();
   Submission submission;
@@ -381,10 +395,11 @@ void GalleryController::use_point(const Eigen::VectorXd& x) {
   redo_.clear();
   ++generation_;
   point_job_ = x;
+  point_job_what_ = what + held_note;
   worker_.start(session_->search(), std::move(submission), generation_,
                 std::chrono::milliseconds(options_.optimizer_delay_ms), session_->plane_preparer());
   submitted_generation_ = generation_;
-  say(MessageKind::kInfo, "the slider values are submitted as your choice; computing...");
+  say(MessageKind::kInfo, what + held_note + ": your choice; computing the next plane...");
 }
 
 std::string GalleryController::holds_description() const {
@@ -447,7 +462,7 @@ void GalleryController::go_to_targets(const std::vector<std::string>& targets) {
     say(MessageKind::kError, solved.message);
     return;
   }
-  use_point(solved.x);
+  use_point(solved.x, "the body meeting the targets", false);
   say(MessageKind::kInfo, "targets " + solved.message + "; computing the next plane...");
 }
 
@@ -613,7 +628,7 @@ void GalleryController::install(SubmitWorker::Result result) {
     session_->adopt_point(x, std::move(*result.search), std::move(result.prepared));
     inspected_ = -1;
     after_change(before);
-    say(MessageKind::kSuccess, "the slider values are now the current best (plane " +
+    say(MessageKind::kSuccess, point_job_what_ + ": now the current best (plane " +
                                    std::to_string(session_->planes_done()) + " done)");
     return;
   }
@@ -632,7 +647,9 @@ void GalleryController::install(SubmitWorker::Result result) {
   char text[96];
   std::snprintf(text, sizeof text, "plane %d done (optimizer %.2f s); here is the next one",
                 session_->planes_done(), last_submit_seconds_);
-  say(MessageKind::kSuccess, text);
+  const std::string note = std::move(finished_plane_note_);
+  finished_plane_note_.clear();
+  say(MessageKind::kSuccess, note.empty() ? std::string(text) : note + " " + text);
 }
 
 void GalleryController::update_display() {

@@ -176,7 +176,10 @@ class GalleryController {
   void resume();
   void start_new();
   void export_point(const std::filesystem::path& path);
-  void use_point(const Eigen::VectorXd& x);
+  // `what`: the point's origin for messages ("the slider values", "the body meeting the
+  // targets"). A slider point is moved onto the holds in force first (the sliders know nothing
+  // of them), so that what is held stays held.
+  void use_point(const Eigen::VectorXd& x, const std::string& what, bool onto_holds);
   void set_holds(const std::vector<std::string>& holds);
   void go_to_targets(const std::vector<std::string>& targets);
 
@@ -203,6 +206,8 @@ class GalleryController {
 
   SubmitWorker worker_;
   std::optional<Eigen::VectorXd> point_job_;  // a slider point being submitted
+  std::string point_job_what_;                // what it is, for the message when it is in
+  std::string finished_plane_note_;           // why the plane being submitted ended early
   int generation_ = 0;
   int space_generation_ = 0;
   int submitted_generation_ = -1;

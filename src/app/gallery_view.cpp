@@ -439,11 +439,17 @@ void GalleryView::draw_grid(GalleryController& c, long frame) {
                 "Computing the next plane...");
   }
   if (hovered_ >= 0 && !c.animating() && !busy) {
-    draw_hover_tooltip(c, origin.x + total * 0.5f, origin.y + total * 0.5f);
+    const int col = hovered_ % n, row = hovered_ / n;
+    const ImVec2 cell_min(origin.x + static_cast<float>(col) * (shown + gap),
+                          origin.y + static_cast<float>(row) * (shown + gap));
+    draw_hover_details(c, LayoutRect{cell_min.x, cell_min.y, shown, shown}, origin.x + total * 0.5f,
+                       origin.y + total * 0.5f);
   }
 }
 
-void GalleryView::draw_hover_tooltip(const GalleryController& c, float centre_x, float centre_y) {
+void GalleryView::draw_hover_details(const GalleryController& c, const LayoutRect& cell,
+                                     float centre_x, float centre_y) {
+  const ImVec2 cell_min(cell.x, cell.y), cell_max(cell.x + cell.w, cell.y + cell.h);
   const auto& points = c.displayed_cells();
   if (hovered_ >= static_cast<int>(points.size()) || !best_.prepared) return;
   const Eigen::VectorXd& x = points[static_cast<std::size_t>(hovered_)].x;
@@ -451,8 +457,24 @@ void GalleryView::draw_hover_tooltip(const GalleryController& c, float centre_x,
       (hover_details_->x - x).cwiseAbs().maxCoeff() > 1e-12) {
     hover_details_ = c.space().prepare(x, true);
   }
-  // The tooltip opens away from the grid's edges, towards its centre, so it covers other cells
-  // and never the side panel's measurements table beside the grid (which it would repeat).
+  // A tooltip over the grid covered the very cells being compared; the measurements table's
+  // "hovered" column has the numbers. Inside the cell, one line says what differs most.
+  if (!ImGui::GetIO().KeyShift) {
+    const std::string summary = c.space().cell_summary(*hover_details_, *best_.prepared);
+    if (summary.empty()) return;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float width = cell_max.x - cell_min.x - 8.0f;
+    ImVec2 size = ImGui::CalcTextSize(summary.c_str(), nullptr, false, width);
+    // Above the cell's "edge of the range" label when it has one.
+    const float lift = points[static_cast<std::size_t>(hovered_)].clamped ? size.y + 8.0f : 0.0f;
+    const ImVec2 p(cell_min.x + 4.0f, cell_max.y - 6.0f - size.y - lift);
+    dl->AddRectFilled(ImVec2(p.x, p.y - 2.0f), ImVec2(p.x + size.x + 8.0f, p.y + size.y + 2.0f),
+                      IM_COL32(20, 22, 28, 190), 3.0f);
+    dl->AddText(nullptr, 0.0f, ImVec2(p.x + 4.0f, p.y), IM_COL32(255, 220, 150, 255),
+                summary.c_str(), nullptr, width);
+    return;
+  }
+  // Shift: the whole comparison, opening away from the grid's edges.
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const ImVec2 pivot(mouse.x > centre_x ? 1.0f : 0.0f, mouse.y > centre_y ? 1.0f : 0.0f);
   const float offset = 18.0f;
@@ -528,9 +550,10 @@ void GalleryView::draw_side_panel(GalleryController& c) {
   ImGui::TextDisabled("Design space: %s", c.space().description().c_str());
   ImGui::TextDisabled("Session: %s%s", c.session_path().string().c_str(),
                       c.autosave_enabled() ? "" : " (autosave OFF)");
-  ImGui::TextDisabled("Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save, "
-                      "Ctrl+Q quit",
-                      c.session().settings().grid_size == 3 ? "1-9" : "A-Y");
+  ImGui::TextDisabled(
+      "Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save, "
+      "Ctrl+Q quit; hold Shift over a cell for all its measurements",
+      c.session().settings().grid_size == 3 ? "1-9" : "A-Y");
   if (c.space().uses_camera()) ImGui::TextDisabled("Drag a cell to orbit all bodies");
 }
 
@@ -555,9 +578,18 @@ void GalleryView::draw_sliders(GalleryController& c) {
       x[i] = std::clamp(static_cast<double>(v), 0.0, 1.0);
       changed = true;
     }
+    if (ImGui::IsItemHovered()) {
+      const std::string details = c.space().dimension_details(i);
+      if (!details.empty()) ImGui::SetTooltip("%s", details.c_str());
+    }
     ImGui::PopID();
   }
   if (changed) slider_x_ = x;
+  if (!c.holds().empty()) {
+    // The sliders move every component freely; what is held is restored when the point is used.
+    ImGui::TextWrapped("Held: %s. Use this moves the sliders' body onto the holds.",
+                       c.holds_description().c_str());
+  }
   ImGui::BeginDisabled(!slider_x_ || c.busy());
   if (ImGui::Button("Use this")) {
     c.queue(intent::UsePoint{*slider_x_});

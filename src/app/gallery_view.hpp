@@ -101,7 +101,10 @@ class GalleryView {
   void select_model_source(const std::string& source);
   void draw_file_browser();
   // (centre_x, centre_y): the grid's centre on screen; the tooltip opens towards it.
-  void draw_hover_tooltip(const GalleryController& c, float centre_x, float centre_y);
+  // The hovered cell against the current best: a one-line summary inside the cell (it covers
+  // no neighbour); the full table while Shift is held.
+  void draw_hover_details(const GalleryController& c, const LayoutRect& cell, float centre_x,
+                          float centre_y);
   void request_export(GalleryController& c, const std::filesystem::path& path);
   void open_save_dialog(GalleryController& c);
   void open_model_dialog();

@@ -1,6 +1,7 @@
 // `session-info FILE`: loads a session file exactly as the window does (the same parser and
 // checks, then its design space with the session's dimensions) and prints what it holds,
 // or why it is unusable. Never moves or changes the file.
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -16,8 +17,9 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery session-info FILE\n\n"
     "Loads a session file as the window does and prints what it holds (model, components,\n"
-    "grid, planes, clicks, file version). Exit code 0 if the window could resume it, 1 if not\n"
-    "(the reason is printed). The file is only read.\n";
+    "grid, planes, clicks, holds, the current best and its measurements, file version).\n"
+    "Exit code 0 if the window could resume it, 1 if not (the reason is printed). The file\n"
+    "is only read.\n";
 
 int run(int argc, char** argv) {
   const cli::ArgParser args(argc, argv, {});
@@ -61,6 +63,26 @@ int run(int argc, char** argv) {
                                " dimensions, the session " + std::to_string(s.components));
     }
     std::cout << "space check: " << space->description() << "\n";
+    // The body (or photo edit) the search has reached, as the window shows it.
+    const Eigen::VectorXd best = session->current_best();
+    std::cout << "current best: x =";
+    char value[32];
+    for (Eigen::Index i = 0; i < best.size(); ++i) {
+      std::snprintf(value, sizeof value, " %.4f", best[i]);
+      std::cout << value;
+    }
+    std::cout << "\n";
+    if (const auto prepared = space->prepare(best, false)) {
+      const auto numbers = space->numbers(*prepared);
+      if (!numbers.empty()) {
+        std::cout << "current best measures:";
+        for (const auto& [name, number] : numbers) {
+          std::snprintf(value, sizeof value, " %s=%.4g", name.c_str(), number);
+          std::cout << value;
+        }
+        std::cout << "\n";
+      }
+    }
     // The window holds a resumed session's holds again; one it would refuse (an unknown name,
     // a name given twice, a value no body in the range has) makes the session unusable as saved.
     if (!session->saved_holds().empty()) {

@@ -158,15 +158,143 @@ std::string BodySpace::source_label() const {
   return std::filesystem::path(source_).filename().string();
 }
 
-std::string BodySpace::dimension_name(int i) const {
-  std::string name = "shape " + std::to_string(i + 1);
-  if (i >= 0 && i < model_.variance_share.size()) {
-    char share[48];
-    std::snprintf(share, sizeof share, " (%.0f%% var.)",
-                  100.0 * static_cast<double>(model_.variance_share[i]));
-    name += share;
+namespace {
+
+// A measurement's words for more and less of it, and the spread it is judged against (about
+// one SD of adults, ANSUR II both sexes pooled; metres, kg), so that a 1 cm change of the
+// shoulders counts as much as a 5 cm change of the waist.
+struct EffectWords {
+  const char* name;
+  const char* more;
+  const char* less;
+  double spread;
+};
+constexpr EffectWords kEffectWords[] = {
+    {"height", "taller", "shorter", 0.090},
+    {"mass", "heavier", "lighter", 15.7},
+    {"chest", "fuller chest", "smaller chest", 0.101},
+    {"waist", "thicker waist", "slimmer waist", 0.114},
+    {"hips", "wider hips", "narrower hips", 0.076},
+    {"shoulder_width", "broader shoulders", "narrower shoulders", 0.030},
+    {"inseam", "longer legs", "shorter legs", 0.055},
+    {"arm_length", "longer arms", "shorter arms", 0.038},
+};
+
+}  // namespace
+
+const BodySpace::ComponentEffect& BodySpace::effect(int i) const {
+  if (effects_.empty()) {
+    // Each component from -1 to +1 SD, the others at the mean: the difference of the tool's
+    // measurements (the torso girths and the joint lengths; not the limb slices, to keep this
+    // to ~100 ms once).
+    const int k = model_.component_count();
+    effects_.resize(static_cast<std::size_t>(k));
+    constexpr unsigned kBands = body::kChestBand | body::kWaistBand | body::kHipsBand;
+    for (int c = 0; c < k; ++c) {
+      Eigen::VectorXf betas = Eigen::VectorXf::Zero(k);
+      betas[c] = 1.0f;
+      const body::Measurements up = body::measure(model_, betas, true, kBands);
+      betas[c] = -1.0f;
+      const body::Measurements down = body::measure(model_, betas, true, kBands);
+      struct Change {
+        const EffectWords* words;
+        double delta, score;
+      };
+      std::vector<Change> changes;
+      for (const auto& w : kEffectWords) {
+        const auto* kind = body::find_measurement(w.name);
+        const double d = 0.5 * (up.*(kind->field) - down.*(kind->field));  // per SD
+        if (std::isfinite(d)) changes.push_back({&w, d, std::abs(d) / w.spread});
+      }
+      std::sort(changes.begin(), changes.end(),
+                [](const Change& a, const Change& b) { return a.score > b.score; });
+      ComponentEffect& e = effects_[static_cast<std::size_t>(c)];
+      e.label = std::to_string(c + 1) + ":";
+      bool height_named = false;
+      // The two largest effects in words, the first with its size (components that change
+      // the same things differ in how much).
+      for (std::size_t j = 0; j < changes.size() && j < 2; ++j) {
+        e.label += std::string(j == 0 ? " " : ", ") +
+                   (changes[j].delta >= 0.0 ? changes[j].words->more : changes[j].words->less);
+        if (j == 0) {
+          const auto* kind = body::find_measurement(changes[j].words->name);
+          e.label += " " + body::format_measurement(kind->quantity, std::abs(changes[j].delta),
+                                                    body::Units::kMetric);
+        }
+        height_named = height_named || std::string(changes[j].words->name) == "height";
+      }
+      const auto height = std::find_if(changes.begin(), changes.end(), [](const Change& ch) {
+        return std::string(ch.words->name) == "height";
+      });
+      // Two components that read alike are told apart by their third effect.
+      const auto words = [](const std::string& label) { return label.substr(label.find(':')); };
+      const bool repeated =
+          std::any_of(effects_.begin(), effects_.begin() + c,
+                      [&](const ComponentEffect& o) { return words(o.label) == words(e.label); });
+      if (repeated && changes.size() > 2) {
+        e.label += ", " + std::string(changes[2].delta >= 0.0 ? changes[2].words->more
+                                                              : changes[2].words->less);
+      } else if (!height_named && height != changes.end() && std::abs(height->delta) < 0.01 &&
+                 e.label.size() < 34) {
+        e.label += ", same height";
+      }
+      e.details = "Component " + std::to_string(c + 1);
+      if (c < model_.variance_share.size()) {
+        char share[64];
+        std::snprintf(share, sizeof share, " (%.0f%% of the shape variance)",
+                      100.0 * static_cast<double>(model_.variance_share[c]));
+        e.details += share;
+      }
+      e.details += "; per standard deviation to the right:";
+      for (const auto& ch : changes) {
+        const auto* kind = body::find_measurement(ch.words->name);
+        e.details += "\n  " + std::string(kind->label) + " " +
+                     body::format_difference(kind->quantity, ch.delta, body::Units::kMetric);
+      }
+    }
   }
-  return name;
+  static const ComponentEffect none{};
+  return i >= 0 && i < static_cast<int>(effects_.size()) ? effects_[static_cast<std::size_t>(i)]
+                                                         : none;
+}
+
+std::string BodySpace::cell_summary(const app::PreparedCell& cell,
+                                    const app::PreparedCell& reference) const {
+  const auto& a = static_cast<const BodyCell&>(cell);
+  const auto& b = static_cast<const BodyCell&>(reference);
+  if (!a.measurements || !b.measurements) return {};
+  struct Change {
+    const EffectWords* words;
+    double delta, score;
+  };
+  std::vector<Change> changes;
+  for (const auto& w : kEffectWords) {
+    const auto* kind = body::find_measurement(w.name);
+    const double d = (*a.measurements).*(kind->field) - (*b.measurements).*(kind->field);
+    if (std::isfinite(d)) changes.push_back({&w, d, std::abs(d) / w.spread});
+  }
+  std::sort(changes.begin(), changes.end(),
+            [](const Change& x, const Change& y) { return x.score > y.score; });
+  std::string text;
+  for (std::size_t j = 0; j < changes.size() && j < 2; ++j) {
+    if (changes[j].score < 0.02) break;  // under about 2 mm or 0.3 kg: no change to speak of
+    const auto* kind = body::find_measurement(changes[j].words->name);
+    text +=
+        (text.empty() ? "" : ", ") +
+        std::string(changes[j].delta >= 0.0 ? changes[j].words->more : changes[j].words->less) +
+        " " +
+        body::format_measurement(kind->quantity, std::abs(changes[j].delta), body::Units::kMetric);
+  }
+  return text.empty() ? "about the same as the current best" : text;
+}
+
+std::string BodySpace::dimension_name(int i) const {
+  const std::string& label = effect(i).label;
+  return label.empty() ? "shape " + std::to_string(i + 1) : label;
+}
+
+std::string BodySpace::dimension_details(int i) const {
+  return effect(i).details;
 }
 
 std::shared_ptr<const app::PreparedCell> BodySpace::prepare(const Eigen::VectorXd& x,

@@ -34,6 +34,9 @@ class BodySpace : public app::DesignSpace {
   std::string description() const override;
   std::string source_label() const override;
   std::string dimension_name(int i) const override;
+  std::string dimension_details(int i) const override;
+  std::string cell_summary(const app::PreparedCell& cell,
+                           const app::PreparedCell& reference) const override;
   int default_grid_size() const override { return 3; }
   bool uses_camera() const override { return true; }
   float preview_aspect() const override { return 260.0f / 320.0f; }  // an A-pose fits
@@ -74,6 +77,12 @@ class BodySpace : public app::DesignSpace {
   mutable std::shared_ptr<const body::Model> shared_model_;
   std::shared_ptr<const body::ShapeDistance> distance_;  // shared with the session's hook
   std::shared_ptr<render::BodyRenderer> renderer_;       // made on the GL thread, shared by cells
+  // What each component does to the body, measured the first time a label is asked for.
+  struct ComponentEffect {
+    std::string label, details;
+  };
+  mutable std::vector<ComponentEffect> effects_;
+  const ComponentEffect& effect(int i) const;
 };
 
 }  // namespace spaces

@@ -251,7 +251,8 @@ TEST_CASE("a resumable session waits for the answer, other intents are ignored",
   o.resume = app::ResumePolicy::kAsk;
   GalleryController c(o, &spaces::open_space, 0.0);
   REQUIRE(c.resume_candidate() != nullptr);
-  CHECK(c.resume_description().find("1 click(s)") != std::string::npos);
+  CHECK(c.resume_description().find("1 click on the current plane") != std::string::npos);
+  CHECK(c.resume_description().find("dimensions") == std::string::npos);  // said twice before
   c.queue(intent::ClickCell{0, 0});
   c.begin_frame(0.0);
   CHECK(c.session().clicks_on_plane() == 0);
@@ -1269,4 +1270,57 @@ TEST_CASE("the default save folder is the documents folder, else home", "[galler
   fs::create_directories(dir.path / "Documents");
   CHECK(app::default_save_folder() == dir.path / "Documents");
   ::setenv("HOME", saved.c_str(), 1);
+}
+
+TEST_CASE("expert sliders say what they change, and a slider point keeps the holds",
+          "[gallery][holds][sliders]") {
+  TempDir dir;
+  GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
+  // Labels from the measured effect, not "shape 1 (66% var.)".
+  const std::string first = c.space().dimension_name(0);
+  CHECK(first.rfind("1: ", 0) == 0);
+  CHECK(first.find("var.") == std::string::npos);
+  CHECK((first.find("taller") != std::string::npos || first.find("shorter") != std::string::npos ||
+         first.find("heavier") != std::string::npos || first.find("lighter") != std::string::npos));
+  CHECK_THAT(c.space().dimension_details(0),
+             Catch::Contains("Height") && Catch::Contains("of the shape variance"));
+  for (int i = 0; i < c.space().dimensions(); ++i) {
+    CHECK(c.space().dimension_name(i).size() < 48);
+  }
+  // Hold the height, move a slider that changes it, use the point: the height stays held.
+  double t = 0.0;
+  c.queue(intent::SetHolds{{"height=1.70"}});
+  c.begin_frame(t += 1.0);
+  REQUIRE(c.holds().size() == 1);
+  Eigen::VectorXd x = c.session().current_best();
+  x[0] = 0.9;  // the first component changes height most
+  c.queue(intent::UsePoint{x});
+  c.begin_frame(t += 1.0);
+  c.wait_for_optimizer(t += 1.0);
+  c.begin_frame(t += 1.0);
+  CHECK_THAT(c.message().text, Catch::Contains("the slider values, moved onto the holds") &&
+                                   Catch::Contains("now the current best"));
+  CHECK(std::abs(number(c.space(), c.session().current_best(), "height_m") - 1.70) <= 0.01);
+  CHECK(c.holds().size() == 1);
+}
+
+TEST_CASE("why a plane ended early stays in the message that shows the next plane", "[gallery]") {
+  TempDir dir;
+  auto o = options(dir.path / "s.json", "body");
+  o.zoom_levels = 8;  // deeper than the cells stay visibly different
+  GalleryController c(o, &spaces::open_space, 0.0);
+  double t = 0.0;
+  int clicks = 0;
+  while (c.session().planes_done() == 0 && !c.session().submission_pending() && clicks < 8) {
+    t = click_and_settle(c, 1, 1, t);
+    ++clicks;
+  }
+  REQUIRE(c.session().submission_pending());
+  REQUIRE(clicks < 8);  // it ended before the last level
+  c.wait_for_optimizer(t);
+  c.begin_frame(t + 1.0);
+  REQUIRE(c.session().planes_done() == 1);
+  // Was replaced within a second by "plane 1 done ...; here is the next one".
+  CHECK_THAT(c.message().text,
+             Catch::Contains("No visible change left") && Catch::Contains("plane 1 done"));
 }

@@ -16,7 +16,8 @@ out=$("$tool" session-info "$dir/good.json" 2>&1)
 rc=$?
 echo "$out"
 if [ $rc -ne 0 ]; then echo "FAIL: good session: exit $rc"; failures=$((failures + 1)); fi
-for word in "components: 4" "planes: 3" "clicks on this plane: 1" "grid: 3x3" "version: 1"; do
+for word in "components: 4" "planes: 3" "clicks on this plane: 1" "grid: 3x3" "version: 1" \
+  "current best: x = 0." "current best measures: height_m=1."; do
   grep -qF "$word" <<<"$out" || { echo "FAIL: good session: '$word' missing"; failures=$((failures + 1)); }
 done
 
