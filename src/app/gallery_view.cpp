@@ -107,6 +107,7 @@ fs::path default_save_folder() {
 
 GalleryView::GalleryView(ViewOptions options, UiPrefs prefs)
     : options_(std::move(options)), prefs_(std::move(prefs)) {
+  thumbnail_camera_.set_preset(render::ViewPreset::kFront);
   open_model_file_ = prefs_.body_model_file;
   select_model_source(prefs_.body_model);
   set_preset(std::clamp(prefs_.view_preset, 0, 2));
@@ -210,12 +211,16 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   }
   if (history_.size() != s.history().size()) history_.resize(s.history().size());
   for (std::size_t i = 0; i < history_.size(); ++i) {
-    history_[i].set_point(space, s.history()[i].chosen, false);
+    const Eigen::VectorXd& chosen = s.history()[i].chosen;
+    if (history_[i].x.size() != chosen.size() || history_[i].x != chosen) {
+      history_[i].x = chosen;
+      history_[i].drawn = false;
+    }
   }
 }
 
-void GalleryView::draw_cells(const GalleryController& c) {
-  const DesignSpace& space = c.space();
+void GalleryView::draw_cells(GalleryController& c) {
+  DesignSpace& space = c.space();
   const float dpi = dpi_;
   const float pw = static_cast<float>(preview_w_), ph = static_cast<float>(preview_h_);
   const float aspect = std::max(0.2f, space.preview_aspect());
@@ -236,7 +241,20 @@ void GalleryView::draw_cells(const GalleryController& c) {
   start_.draw(muted, camera_version_, pwx, phx, options_.samples);
   const int tw = static_cast<int>(std::lround(dpi * 58.0f));
   const int th = static_cast<int>(std::lround(dpi * 58.0f / aspect));
-  for (auto& h : history_) h.draw(look, camera_version_, tw, th, options_.samples);
+  // A few new thumbnails a frame (a resumed long session has dozens), each drawn once.
+  CellLook front = look;
+  front.camera = space.uses_camera() ? &thumbnail_camera_ : nullptr;
+  int budget = 4;
+  for (auto& h : history_) {
+    if (h.drawn && h.fbo.width() == tw && h.fbo.height() == th) continue;
+    if (budget-- == 0) break;
+    CellView once;
+    once.set_point(space, h.x, false);
+    once.draw(front, 0, tw, th, options_.samples);
+    h.fbo = std::move(once.fbo);
+    h.drawn = true;
+    ++thumbnail_draws_;
+  }
 }
 
 void GalleryView::build(GalleryController& c, long frame) {

@@ -44,7 +44,7 @@ class GalleryView {
   // pixels.
   void update_cells(GalleryController& c, float width, float height, float dpi);
   // Then renders every cell whose content, size or camera changed into its framebuffer.
-  void draw_cells(const GalleryController& c);
+  void draw_cells(GalleryController& c);
   // Builds the ImGui panels for this frame; input becomes intents queued on `c`.
   void build(GalleryController& c, long frame);
 
@@ -59,6 +59,11 @@ class GalleryView {
   const std::optional<std::filesystem::path>& overwrite_question() const {
     return confirm_overwrite_;
   }
+  // How many history thumbnails were drawn so far (each once: tests check that orbiting the
+  // grid draws none).
+  long thumbnail_draws() const { return thumbnail_draws_; }
+  // Switches the view preset (0 front, 1 side, 2 three-quarter), as its toolbar button does.
+  void choose_view(int index) { set_preset(index); }
   // A dialog or question is open (the window keeps polling).
   bool waiting_for_dialog() const { return desktop_dialog_.valid(); }
 
@@ -127,7 +132,16 @@ class GalleryView {
 
   std::vector<CellView> cells_;
   CellView best_, start_, inspect_;
-  std::vector<CellView> history_;
+  // History thumbnails: only their pictures. Each is drawn once, from the front, and keeps no
+  // mesh or prepared data, so neither orbiting nor a long session makes them cost more.
+  struct Thumbnail {
+    Eigen::VectorXd x;
+    render::CellFramebuffer fbo;
+    bool drawn = false;
+  };
+  std::vector<Thumbnail> history_;
+  render::Camera thumbnail_camera_;
+  long thumbnail_draws_ = 0;
   int cell_pixels_ = 300;
   int preview_w_ = 260;
   int preview_h_ = 320;

@@ -72,7 +72,7 @@ int run(int argc, char** argv) {
       std::cout << value;
     }
     std::cout << "\n";
-    if (const auto prepared = space->prepare(best, false)) {
+    if (const auto prepared = space->prepare(best, true)) {
       const auto numbers = space->numbers(*prepared);
       if (!numbers.empty()) {
         std::cout << "current best measures:";

@@ -231,9 +231,12 @@ const BodySpace::ComponentEffect& BodySpace::effect(int i) const {
       const bool repeated =
           std::any_of(effects_.begin(), effects_.begin() + c,
                       [&](const ComponentEffect& o) { return words(o.label) == words(e.label); });
-      if (repeated && changes.size() > 2) {
-        e.label += ", " + std::string(changes[2].delta >= 0.0 ? changes[2].words->more
-                                                              : changes[2].words->less);
+      const std::string third =
+          changes.size() > 2 ? ", " + std::string(changes[2].delta >= 0.0 ? changes[2].words->more
+                                                                          : changes[2].words->less)
+                             : std::string();
+      if (repeated && !third.empty() && e.label.size() + third.size() <= 46) {
+        e.label += third;
       } else if (!height_named && height != changes.end() && std::abs(height->delta) < 0.01 &&
                  e.label.size() < 34) {
         e.label += ", same height";

@@ -1324,3 +1324,24 @@ TEST_CASE("why a plane ended early stays in the message that shows the next plan
   CHECK_THAT(c.message().text,
              Catch::Contains("No visible change left") && Catch::Contains("plane 1 done"));
 }
+
+TEST_CASE("history thumbnails are drawn once: orbiting the grid redraws none of them",
+          "[gallery][gl][history]") {
+  TempDir dir;
+  auto o = options(dir.path / "s.json", "body");
+  o.zoom_levels = 2;
+  InProcessWindow w(o);
+  for (int plane = 0; plane < 3; ++plane) w.t = finish_plane(*w.c, w.t);
+  REQUIRE(w.c->session().planes_done() == 3);
+  for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+  CHECK(w.view->thumbnail_draws() == 3);
+  // Every view preset (a camera change re-renders the grid and the previews).
+  for (int preset : {1, 2, 0, 1}) {
+    w.view->choose_view(preset);
+    w.frame(ImVec2(-1, -1), false);
+  }
+  CHECK(w.view->thumbnail_draws() == 3);
+  w.t = finish_plane(*w.c, w.t + 1.0);
+  for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+  CHECK(w.view->thumbnail_draws() == 4);  // only the new entry
+}
