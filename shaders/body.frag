@@ -17,7 +17,13 @@ float soft_diffuse(vec3 n, vec3 l, float wrap) {
 void main() {
   vec3 n = normalize(v_view_normal);
   vec3 to_eye = normalize(-v_view_position);
-  if (dot(n, to_eye) < 0.0) n = -n;  // open meshes: light the inside like the outside
+  // Open meshes: light the inside like the outside. Whether a fragment shows the inside is
+  // decided by the triangle's own plane (screen-space derivatives), not by the interpolated
+  // normal: near a silhouette that normal turns slightly away from the eye on the outside
+  // too, and flipping it there left dark specks along the outlines of heads and backs.
+  vec3 face = normalize(cross(dFdx(v_view_position), dFdy(v_view_position)));
+  if (dot(face, to_eye) < 0.0) face = -face;
+  if (dot(n, face) < 0.0) n = -n;
 
   const vec3 key_dir = normalize(vec3(-0.55, 0.65, 0.55));
   const vec3 fill_dir = normalize(vec3(0.8, 0.1, 0.45));
