@@ -427,6 +427,8 @@ ControllerOptions controller_options(const GalleryOptions& o) {
   ControllerOptions c;
   c.space.kind = o.space;
   c.space.source = o.source.value_or("");
+  // A space named on the command line (--space, --model, --image) is what the user asked for.
+  c.space_chosen = o.space_given || o.source.has_value();
   c.space.dimensions = o.space == "photo" ? 12 : o.components;
   c.grid_size = o.grid_size;
   c.zoom_levels = o.zoom_levels;

@@ -18,6 +18,7 @@ namespace app {
 
 struct GalleryOptions {
   std::string space = "body";         // design space kind: body | photo
+  bool space_given = false;           // --space was on the command line
   std::optional<std::string> source;  // --model / --image; none: the built-in default
   int components = 10;                // body: shape components explored
   int grid_size = 0;                  // 0 = the space's default (3 body, 5 photo)

@@ -171,6 +171,11 @@ std::string GalleryController::resume_description() const {
   return what + text;
 }
 
+std::string GalleryController::asked_kind_instead() const {
+  if (!pending_resume_ || !options_.space_chosen) return "";
+  return pending_resume_->settings().space != options_.space.kind ? options_.space.kind : "";
+}
+
 void GalleryController::begin_frame(double now_seconds) {
   now_ = now_seconds;
   poll_worker();

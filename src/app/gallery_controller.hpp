@@ -31,8 +31,9 @@ namespace app {
 enum class ResumePolicy { kAsk, kYes, kNo };
 
 struct ControllerOptions {
-  SpaceSettings space;  // the space of a new search (a resumed session brings its own)
-  int grid_size = 0;    // 0 = the space's default (3 for bodies, 5 for photos)
+  SpaceSettings space;        // the space of a new search (a resumed session brings its own)
+  bool space_chosen = false;  // `space` was asked for (the command line), not a default
+  int grid_size = 0;          // 0 = the space's default (3 for bodies, 5 for photos)
   int zoom_levels = 4;
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file; empty = no autosave
@@ -129,6 +130,10 @@ class GalleryController {
   // The resume question at start-up.
   const Session* resume_candidate() const { return pending_resume_ ? &*pending_resume_ : nullptr; }
   std::string resume_description() const;
+  // The kind of search asked for when it is not the resumable session's ("photo" while a body
+  // session waits), else empty: the question then offers that search instead of a plain
+  // "Start new".
+  std::string asked_kind_instead() const;
 
   // The optimizer is due or running.
   bool busy() const { return session_->submission_pending() || point_job_.has_value(); }

@@ -815,17 +815,30 @@ void GalleryView::draw_modals(GalleryController& c) {
                             : "A previous session was found: %s",
                   c.session_path().string().c_str());
       ImGui::TextUnformatted(c.resume_description().c_str());
+      const std::string instead = c.asked_kind_instead();
+      if (!instead.empty()) {
+        ImGui::Text("You asked for a %s search: start it, or resume the %s search?",
+                    instead.c_str(), c.resume_candidate()->settings().space.c_str());
+      }
       if (elsewhere) {
         ImGui::TextUnformatted(
             "This window saves nothing, so the other one loses no clicks. Close the other window "
             "to continue the search here.");
       }
-      if (ImGui::Button(elsewhere ? "View read-only" : "Resume", ImVec2(160, 0))) {
+      const std::string resume_label =
+          elsewhere ? "View read-only"
+                    : (instead.empty()
+                           ? "Resume"
+                           : "Resume the " + c.resume_candidate()->settings().space + " search");
+      if (ImGui::Button(resume_label.c_str(), ImVec2(instead.empty() ? 160 : 220, 0))) {
         c.queue(intent::Resume{});
         ImGui::CloseCurrentPopup();
       }
       ImGui::SameLine();
-      if (ImGui::Button(elsewhere ? "New search (not saved)" : "Start new", ImVec2(160, 0))) {
+      const std::string start_label =
+          elsewhere ? "New search (not saved)"
+                    : (instead.empty() ? "Start new" : "Start the " + instead + " search");
+      if (ImGui::Button(start_label.c_str(), ImVec2(instead.empty() ? 160 : 220, 0))) {
         c.queue(intent::StartNew{});
         ImGui::CloseCurrentPopup();
       }

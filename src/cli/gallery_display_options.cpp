@@ -5,6 +5,7 @@ namespace cli {
 void read_gallery_display_options(const ArgParser& args, int default_cell_size,
                                   app::GalleryOptions& o) {
   o.space = args.get_or("space", "body");
+  o.space_given = args.get("space").has_value();
   if (o.space != "body" && o.space != "photo") throw ArgError("--space must be body or photo");
   if (const auto m = args.get("model")) {
     if (o.space != "body") throw ArgError("--model is for --space body; photos take --image");

@@ -1345,3 +1345,28 @@ TEST_CASE("history thumbnails are drawn once: orbiting the grid redraws none of 
   for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
   CHECK(w.view->thumbnail_draws() == 4);  // only the new entry
 }
+
+TEST_CASE("asking for a photo search while a body session waits offers that search by name",
+          "[gallery]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  {
+    GalleryController body(options(session, "body"), &spaces::open_space, 0.0);
+    (void)click_and_settle(body, 1, 1, 0.0);
+  }
+  auto o = options(session, "photo");
+  o.resume = app::ResumePolicy::kAsk;
+  o.space_chosen = true;  // --space photo
+  GalleryController c(o, &spaces::open_space, 0.0);
+  REQUIRE(c.resume_candidate() != nullptr);
+  CHECK(c.asked_kind_instead() == "photo");
+  c.queue(intent::StartNew{});
+  c.begin_frame(0.1);
+  CHECK(c.space().settings().kind == "photo");
+  CHECK(fs::exists(fs::path(session.string() + ".previous")));  // the body search is kept
+  // Without a space on the command line, a resumable session is just offered.
+  auto plain = options(session, "body");
+  plain.resume = app::ResumePolicy::kAsk;
+  GalleryController d(plain, &spaces::open_space, 0.0);
+  CHECK(d.asked_kind_instead().empty());
+}
