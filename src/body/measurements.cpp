@@ -178,8 +178,18 @@ double largest_girth(const BodyMesh& mesh, const Faces& faces, const Bone& b,
 void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces, double H,
                    double crotch, unsigned bands, Measurements& m) {
   if ((bands & kNeckBand) != 0) {
+    // The narrowest girth along the middle of the neck: below it the trapezius widens the
+    // slice, above it the jaw; where the SMPL-family joints put the neck's middle varies.
     const Bone neck = bone(model, mesh, "neck", "head");
-    m.neck = neck.found ? girth_across(mesh, faces, neck.at(0.5), neck.b - neck.a) : kNaN;
+    m.neck = kNaN;
+    if (neck.found) {
+      double narrowest = std::numeric_limits<double>::infinity();
+      for (const double t : {0.3, 0.4, 0.5, 0.6, 0.7}) {
+        const double g = girth_across(mesh, faces, neck.at(t), neck.b - neck.a);
+        if (g > 0.0) narrowest = std::min(narrowest, g);
+      }
+      if (std::isfinite(narrowest)) m.neck = narrowest;
+    }
   }
   double upper_arm = 0.0, deltoids = 0.0, thigh = 0.0, calf = 0.0;
   const double centre_x = mesh.vertices.col(0).cast<double>().mean();

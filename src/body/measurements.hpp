@@ -76,8 +76,8 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces);
 // The girths across the neck and limbs are taken on planes perpendicular to a bone (the
 // segment between two joints), as the survey takes them perpendicular to the limb's long axis
 // (ANSUR II, Gordon et al. 2014), so they do not depend on the pose of the arms:
-//   neck = girth at the middle of the neck -> head segment (the survey: just below the
-//          laryngeal prominence, perpendicular to the neck's axis);
+//   neck = the smallest girth at 30-70% of the neck -> head segment (the survey: just below
+//          the laryngeal prominence, perpendicular to the neck's axis, about its narrowest);
 //   upper_arm = the largest girth at 40, 50 and 60% of shoulder -> elbow, both arms' mean (the
 //          survey's biceps circumference is taken flexed and reads 1-3 cm more);
 //   thigh = girth 1% of H below the crotch along hip -> knee (the survey: at the gluteal
