@@ -229,9 +229,10 @@ void GalleryView::draw_cells(GalleryController& c) {
   // While the grid moves, cells render without multisampling (a software rasterizer pays per
   // sample); the settled grid is drawn again with full antialiasing.
   const bool fast = c.animating() || camera_dragging_;
+  bool grid_drew = false;
   for (auto& cell : cells_) {
-    cell.draw(look, camera_version_, cell_pixels_, cell_pixels_, options_.samples, fast,
-              options_.animation_scale, options_.animation_samples > 0);
+    grid_drew |= cell.draw(look, camera_version_, cell_pixels_, cell_pixels_, options_.samples,
+                           fast, options_.animation_scale, options_.animation_samples > 0);
   }
   const int pwx = static_cast<int>(std::lround(dpi * pw));
   const int phx = static_cast<int>(std::lround(dpi * ph));
@@ -241,10 +242,11 @@ void GalleryView::draw_cells(GalleryController& c) {
   start_.draw(muted, camera_version_, pwx, phx, options_.samples);
   const int tw = static_cast<int>(std::lround(dpi * 58.0f));
   const int th = static_cast<int>(std::lround(dpi * 58.0f / aspect));
-  // A few new thumbnails a frame (a resumed long session has dozens), each drawn once.
+  // A few new thumbnails a frame (a resumed long session has dozens), each drawn once, and
+  // none in a frame that drew the grid: the grid comes first (launch, zoom, orbit).
   CellLook front = look;
   front.camera = space.uses_camera() ? &thumbnail_camera_ : nullptr;
-  int budget = 4;
+  int budget = grid_drew ? 0 : 4;
   for (auto& h : history_) {
     if (h.drawn && h.fbo.width() == tw && h.fbo.height() == th) continue;
     if (budget-- == 0) break;
