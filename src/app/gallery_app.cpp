@@ -434,6 +434,8 @@ ControllerOptions controller_options(const GalleryOptions& o) {
   c.zoom_levels = o.zoom_levels;
   c.seed = o.seed;
   c.session_path = o.session_path;
+  // A click never waits for the session file (tens of ms on a long session).
+  c.background_autosave = true;
   c.resume = o.resume;
   c.zoom_seconds = o.zoom_seconds;
   c.optimizer_delay_ms = o.optimizer_delay_ms;

@@ -133,6 +133,9 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
       }
     }
   }
+  if (autosave_enabled_ && options_.background_autosave) {
+    writer_ = std::make_unique<SessionWriter>(session_file_stamp_);
+  }
   // Command-line targets, then holds: applied at the first frame that may (after the resume
   // question; a target's point goes through the optimizer before the holds are built).
   if (!options_.targets.empty()) deferred_.push_back(intent::GoToTargets{options_.targets});
@@ -179,6 +182,9 @@ std::string GalleryController::asked_kind_instead() const {
 void GalleryController::begin_frame(double now_seconds) {
   now_ = now_seconds;
   poll_worker();
+  if (writer_) {
+    if (auto r = writer_->poll()) take_save_result(*r);
+  }
   if (!deferred_.empty() && !busy() && !worker_.busy() && !pending_resume_) {
     // One at a time: a target's point is submitted to the optimizer before the next applies.
     queue_.push_front(deferred_.front());
@@ -208,6 +214,10 @@ void GalleryController::wait_for_optimizer(double now_seconds) {
 
 void GalleryController::save_now() {
   if (!pending_resume_) autosave();
+  if (writer_) {
+    writer_->flush();
+    if (auto r = writer_->poll()) take_save_result(*r);
+  }
 }
 
 void GalleryController::apply(const Intent& i) {
@@ -543,6 +553,12 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
 void GalleryController::keep_old_session_file(const std::string& why) {
   // Another window owns the file: it is not this window's to move.
   if (options_.session_path.empty() || open_elsewhere_) return;
+  if (writer_) {
+    // A save still queued would land after the move (or be the file to move); its outcome
+    // counts first.
+    writer_->flush();
+    if (auto r = writer_->poll()) take_save_result(*r);
+  }
   std::error_code ec;
   if (!fs::exists(options_.session_path, ec)) return;
   fs::path aside;
@@ -553,6 +569,7 @@ void GalleryController::keep_old_session_file(const std::string& why) {
     return;
   }
   session_file_stamp_ = stamp_of(options_.session_path);
+  if (writer_) writer_->expect(session_file_stamp_);
   if (!why.empty()) {
     say(MessageKind::kError, why + "; kept it as " + aside.string());
   } else {
@@ -562,37 +579,34 @@ void GalleryController::keep_old_session_file(const std::string& why) {
 
 void GalleryController::autosave() {
   if (!autosave_enabled_ || pending_resume_) return;
-  // The file changed since this window last read or wrote it (another program, or a window
-  // that ran without the lock): never save over the newer file. This window's state goes
-  // beside it instead and autosave stops.
-  if (const FileStamp now = stamp_of(options_.session_path);
-      now.exists && now != session_file_stamp_) {
+  if (writer_) {
+    writer_->save(*session_, options_.session_path);
+    return;
+  }
+  take_save_result(save_session_guarded(*session_, options_.session_path, session_file_stamp_));
+}
+
+// What a save did: the stamp to expect next time, the banner, and autosave off after a
+// conflict (the file was changed by another window since this one saved it: it is left as it
+// is, and this window's state was put beside it).
+void GalleryController::take_save_result(const GuardedSave& r) {
+  session_file_stamp_ = r.stamp;
+  if (r.conflict) {
     autosave_enabled_ = false;
-    fs::path beside = options_.session_path;
-    beside += ".conflict-" + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(
-                                                std::chrono::system_clock::now().time_since_epoch())
-                                                .count());
-    std::string kept;
-    try {
-      save_session(*session_, beside);
-      kept = "this window's search is saved as " + beside.string();
-    } catch (const std::exception& e) {
-      kept = std::string("this window's search could not be saved beside it: ") + e.what();
-    }
-    autosave_status_.failed(options_.session_path.string() +
-                            " was changed by another window since this one saved it; it is left "
-                            "as it is and autosave is off here; " +
-                            kept);
+    autosave_status_.failed(
+        options_.session_path.string() +
+        " was changed by another window since this one saved it; it is left as it is and "
+        "autosave is off here; " +
+        (r.beside.empty() ? "this window's search could not be saved beside it: " + r.error
+                          : "this window's search is saved as " + r.beside.string()));
     say(MessageKind::kError, autosave_status_.error());
     return;
   }
-  try {
-    save_session(*session_, options_.session_path);
-    session_file_stamp_ = stamp_of(options_.session_path);
+  if (r.saved) {
     autosave_status_.succeeded();
-  } catch (const std::exception& e) {
-    autosave_status_.failed(e.what());
-    say(MessageKind::kError, std::string("autosave failed: ") + e.what());
+  } else {
+    autosave_status_.failed(r.error);
+    say(MessageKind::kError, "autosave failed: " + r.error);
   }
 }
 

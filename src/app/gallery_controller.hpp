@@ -22,6 +22,7 @@
 #include "app/design_space.hpp"
 #include "app/session.hpp"
 #include "app/session_store.hpp"
+#include "app/session_writer.hpp"
 #include "app/worker.hpp"
 #include "sps/zoom_grid.hpp"
 #include "util/file_lock.hpp"
@@ -42,6 +43,9 @@ struct ControllerOptions {
   double morph_seconds = 0.6;
   int optimizer_delay_ms = 0;  // testing: hold each optimizer run back
   bool log = true;             // messages also go to stdout / stderr
+  // Autosave on a thread of its own (the window); off, every save is done before the intent
+  // that caused it returns (tests read the file right after).
+  bool background_autosave = false;
   // Issue 13, from the command line: "name=value" targets to go to first, then holds.
   std::vector<std::string> targets;
   std::vector<std::string> holds;
@@ -195,6 +199,7 @@ class GalleryController {
   void after_change(const sps::Plane& plane_before);
   void poll_worker();
   void autosave();
+  void take_save_result(const GuardedSave& result);
   void keep_old_session_file(const std::string& why);
   void install(SubmitWorker::Result result);
   void update_display();
@@ -222,7 +227,8 @@ class GalleryController {
   AutosaveStatus autosave_status_;
   std::optional<util::FileLock> session_lock_;  // held while this window owns the session file
   bool open_elsewhere_ = false;
-  FileStamp session_file_stamp_;  // the file as this window last read or wrote it
+  FileStamp session_file_stamp_;           // the file as this window last read or wrote it
+  std::unique_ptr<SessionWriter> writer_;  // with background_autosave
   Message message_;
   std::filesystem::path last_export_;
   int inspected_ = -1;

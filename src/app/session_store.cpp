@@ -114,6 +114,35 @@ FileStamp stamp_of(const fs::path& path) {
   return stamp;
 }
 
+GuardedSave save_session_guarded(const Session& session, const fs::path& path,
+                                 const FileStamp& expected) {
+  GuardedSave result;
+  if (const FileStamp now = stamp_of(path); now.exists && now != expected) {
+    result.conflict = true;
+    result.stamp = now;
+    result.beside = path;
+    result.beside +=
+        ".conflict-" + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(
+                                          std::chrono::system_clock::now().time_since_epoch())
+                                          .count());
+    try {
+      save_session(session, result.beside);
+    } catch (const std::exception& e) {
+      result.error = e.what();
+      result.beside.clear();
+    }
+    return result;
+  }
+  try {
+    save_session(session, path);
+    result.saved = true;
+  } catch (const std::exception& e) {
+    result.error = e.what();
+  }
+  result.stamp = stamp_of(path);
+  return result;
+}
+
 LoadResult load_session(const fs::path& path, bool move_corrupt_aside) {
   LoadResult result;
   std::error_code ec;

@@ -43,6 +43,19 @@ struct FileStamp {
 };
 FileStamp stamp_of(const std::filesystem::path& path);
 
+// save_session() unless the file at `path` was replaced since this program last read or wrote
+// it (its stamp differs from `expected` and it exists): then the newer file is left as it is
+// and `session` goes beside it as "<name>.conflict-<time>". Never throws.
+struct GuardedSave {
+  bool saved = false;     // written to `path`
+  bool conflict = false;  // `path` was newer; see `beside`
+  std::filesystem::path beside;
+  std::string error;  // why nothing (or only the copy beside) was written
+  FileStamp stamp;    // the file at `path` afterwards
+};
+GuardedSave save_session_guarded(const Session& session, const std::filesystem::path& path,
+                                 const FileStamp& expected);
+
 struct LoadResult {
   std::optional<Session> session;   // set when the file existed and was valid
   std::string problem;              // non-empty when the file was unreadable or corrupt

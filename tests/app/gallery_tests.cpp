@@ -1370,3 +1370,49 @@ TEST_CASE("asking for a photo search while a body session waits offers that sear
   GalleryController d(plain, &spaces::open_space, 0.0);
   CHECK(d.asked_kind_instead().empty());
 }
+
+TEST_CASE("autosave on its own thread: nothing lost, nothing written over",
+          "[gallery][background-save]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  auto o = options(session, "body");
+  o.resume = app::ResumePolicy::kYes;
+  o.background_autosave = true;
+  {
+    GalleryController c(o, &spaces::open_space, 0.0);
+    double t = click_and_settle(c, 0, 0, 0.0);
+    t = click_and_settle(c, 1, 1, t);
+  }  // closing writes what is queued
+  CHECK(app::read_session_file(session).clicks_on_plane() == 2);
+  {
+    GalleryController c(o, &spaces::open_space, 0.0);
+    REQUIRE(c.session().clicks_on_plane() == 2);
+    double t = click_and_settle(c, 2, 2, 0.0);
+    c.save_now();
+    CHECK(app::read_session_file(session).clicks_on_plane() == 3);
+    CHECK(c.autosave_problem().empty());
+    // A new search at once: the old search, with its last click, is set aside first.
+    c.queue(intent::Open{app::SpaceSettings{"body", "male", 10}, 0, 4});
+    c.begin_frame(t += 1.0);
+    c.save_now();
+    CHECK(app::read_session_file(fs::path(session.string() + ".previous")).clicks_on_plane() == 3);
+    CHECK(app::read_session_file(session).settings().model_path == "male");
+    // Another program replaces the file: this window keeps it and saves beside it.
+    app::Session other = app::read_session_file(session);
+    other.click({0, 0});
+    app::save_session(other, session);
+    const auto stamp = app::stamp_of(session);
+    t = click_and_settle(c, 1, 0, t + 1.0);
+    t = click_and_settle(c, 0, 1, t);
+    c.save_now();
+    CHECK(app::stamp_of(session) == stamp);
+    CHECK_FALSE(c.autosave_enabled());
+    CHECK_THAT(c.autosave_problem(), Catch::Contains("changed by another window"));
+    int conflicts = 0;
+    for (const auto& e : fs::directory_iterator(dir.path)) {
+      conflicts += e.path().filename().string().rfind("s.json.conflict-", 0) == 0 ? 1 : 0;
+    }
+    CHECK(conflicts == 1);
+  }
+  CHECK(app::read_session_file(session).clicks_on_plane() == 1);  // the other program's
+}

@@ -1,0 +1,74 @@
+#include "app/session_writer.hpp"
+
+#include <utility>
+
+namespace app {
+
+SessionWriter::SessionWriter(FileStamp expected)
+    : expected_(expected), thread_([this] { run(); }) {}
+
+SessionWriter::~SessionWriter() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void SessionWriter::save(Session session, std::filesystem::path path) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (halted_) return;
+    queued_.emplace(std::move(session), std::move(path));
+  }
+  wake_.notify_all();
+}
+
+void SessionWriter::flush() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  idle_.wait(lock, [this] { return !queued_ && !writing_; });
+}
+
+void SessionWriter::expect(FileStamp stamp) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  expected_ = stamp;
+  halted_ = false;
+}
+
+std::optional<GuardedSave> SessionWriter::poll() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::optional<GuardedSave> r = std::move(done_);
+  done_.reset();
+  return r;
+}
+
+void SessionWriter::run() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return stopping_ || queued_.has_value(); });
+    if (!queued_) {
+      if (stopping_) return;
+      continue;
+    }
+    auto job = std::move(*queued_);
+    queued_.reset();
+    writing_ = true;
+    const FileStamp expected = expected_;
+    lock.unlock();
+    GuardedSave result = save_session_guarded(job.first, job.second, expected);
+    lock.lock();
+    writing_ = false;
+    expected_ = result.stamp;
+    // After a conflict nothing more is written: the newer file is someone else's.
+    if (result.conflict) {
+      queued_.reset();
+      halted_ = true;
+    }
+    done_ = std::move(result);
+    idle_.notify_all();
+    if (stopping_ && !queued_) return;
+  }
+}
+
+}  // namespace app
