@@ -180,6 +180,26 @@ constexpr EffectWords kEffectWords[] = {
     {"arm_length", "longer arms", "shorter arms", 0.038},
 };
 
+// One measurement's change between two bodies, and how visible it is (in its spreads).
+struct Change {
+  const EffectWords* words;
+  double delta, score;
+};
+
+// (a - b) * scale for every measurement that has words, the most visible first.
+std::vector<Change> ranked_changes(const body::Measurements& a, const body::Measurements& b,
+                                   double scale) {
+  std::vector<Change> changes;
+  for (const auto& w : kEffectWords) {
+    const auto* kind = body::find_measurement(w.name);
+    const double d = scale * (a.*(kind->field) - b.*(kind->field));
+    if (std::isfinite(d)) changes.push_back({&w, d, std::abs(d) / w.spread});
+  }
+  std::sort(changes.begin(), changes.end(),
+            [](const Change& x, const Change& y) { return x.score > y.score; });
+  return changes;
+}
+
 }  // namespace
 
 const BodySpace::ComponentEffect& BodySpace::effect(int i) const {
@@ -196,18 +216,7 @@ const BodySpace::ComponentEffect& BodySpace::effect(int i) const {
       const body::Measurements up = body::measure(model_, betas, true, kBands);
       betas[c] = -1.0f;
       const body::Measurements down = body::measure(model_, betas, true, kBands);
-      struct Change {
-        const EffectWords* words;
-        double delta, score;
-      };
-      std::vector<Change> changes;
-      for (const auto& w : kEffectWords) {
-        const auto* kind = body::find_measurement(w.name);
-        const double d = 0.5 * (up.*(kind->field) - down.*(kind->field));  // per SD
-        if (std::isfinite(d)) changes.push_back({&w, d, std::abs(d) / w.spread});
-      }
-      std::sort(changes.begin(), changes.end(),
-                [](const Change& a, const Change& b) { return a.score > b.score; });
+      const std::vector<Change> changes = ranked_changes(up, down, 0.5);  // per SD
       ComponentEffect& e = effects_[static_cast<std::size_t>(c)];
       e.label = std::to_string(c + 1) + ":";
       bool height_named = false;
@@ -266,18 +275,7 @@ std::string BodySpace::cell_summary(const app::PreparedCell& cell,
   const auto& a = static_cast<const BodyCell&>(cell);
   const auto& b = static_cast<const BodyCell&>(reference);
   if (!a.measurements || !b.measurements) return {};
-  struct Change {
-    const EffectWords* words;
-    double delta, score;
-  };
-  std::vector<Change> changes;
-  for (const auto& w : kEffectWords) {
-    const auto* kind = body::find_measurement(w.name);
-    const double d = (*a.measurements).*(kind->field) - (*b.measurements).*(kind->field);
-    if (std::isfinite(d)) changes.push_back({&w, d, std::abs(d) / w.spread});
-  }
-  std::sort(changes.begin(), changes.end(),
-            [](const Change& x, const Change& y) { return x.score > y.score; });
+  const std::vector<Change> changes = ranked_changes(*a.measurements, *b.measurements, 1.0);
   std::string text;
   for (std::size_t j = 0; j < changes.size() && j < 2; ++j) {
     if (changes[j].score < 0.02) break;  // under about 2 mm or 0.3 kg: no change to speak of
