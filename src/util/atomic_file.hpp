@@ -17,7 +17,8 @@ class FileWriteError : public std::runtime_error {
 };
 
 // Throws FileWriteError naming the file and the reason ("disk full", "permission denied",
-// "is a folder", "a device, pipe or socket"). Does not create missing folders unless `create_folders` is set.
+// "is a folder", "a device, pipe or socket"). Does not create missing folders unless
+// `create_folders` is set.
 void write_file_atomically(const std::filesystem::path& path, const void* data, std::size_t size,
                            bool create_folders = false);
 inline void write_file_atomically(const std::filesystem::path& path, const std::string& bytes,
