@@ -549,8 +549,26 @@ void GalleryView::draw_side_panel(GalleryController& c) {
     // targets. The panel only asks; the controller applies between frames.
     if (ImGui::CollapsingHeader("Measurements", ImGuiTreeNodeFlags_DefaultOpen)) {
       const PreparedCell* hovered = hovered_ >= 0 ? hover_details_.get() : nullptr;
+      // Typed targets and the units survive a relaunch (ui.json).
+      const auto names = c.space().measurement_names();
+      if (measurement_panel_.target_text.size() != names.size()) {
+        measurement_panel_.target_text.assign(names.size(), "");
+        for (std::size_t i = 0; i < names.size(); ++i) {
+          const auto it = prefs_.typed_targets.find(names[i]);
+          if (it != prefs_.typed_targets.end()) measurement_panel_.target_text[i] = it->second;
+        }
+        measurement_panel_.imperial = prefs_.imperial;
+      }
       const auto request = c.space().draw_measurement_panel(
           shown.prepared.get(), start_.prepared.get(), hovered, c.holds(), measurement_panel_);
+      for (std::size_t i = 0; i < names.size() && i < measurement_panel_.target_text.size(); ++i) {
+        if (measurement_panel_.target_text[i].empty()) {
+          prefs_.typed_targets.erase(names[i]);
+        } else {
+          prefs_.typed_targets[names[i]] = measurement_panel_.target_text[i];
+        }
+      }
+      prefs_.imperial = measurement_panel_.imperial;
       if (request.holds) c.queue(intent::SetHolds{*request.holds});
       if (request.targets) c.queue(intent::GoToTargets{*request.targets});
       if (!c.holds().empty()) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace app {
@@ -22,13 +23,17 @@ struct UiPrefs {
   // or a model file. A launch without --model starts a new search on it.
   std::string body_model = "neutral";
   std::string body_model_file;  // the last file chosen, offered again under "File"
+  // The measurement panel: typed targets not yet used ("height" -> "180cm"), and its units.
+  std::map<std::string, std::string> typed_targets;
+  bool imperial = false;
 
   bool operator==(const UiPrefs& o) const {
     return window_width == o.window_width && window_height == o.window_height &&
            save_folder == o.save_folder && save_name == o.save_name &&
            view_preset == o.view_preset && open_panel == o.open_panel &&
            save_panel == o.save_panel && history_panel == o.history_panel &&
-           body_model == o.body_model && body_model_file == o.body_model_file;
+           body_model == o.body_model && body_model_file == o.body_model_file &&
+           typed_targets == o.typed_targets && imperial == o.imperial;
   }
   bool operator!=(const UiPrefs& o) const { return !(*this == o); }
 };

@@ -1416,3 +1416,27 @@ TEST_CASE("autosave on its own thread: nothing lost, nothing written over",
   }
   CHECK(app::read_session_file(session).clicks_on_plane() == 1);  // the other program's
 }
+
+TEST_CASE("typed targets and the panel's units survive a relaunch", "[gallery][gl][ui-prefs]") {
+  TempDir dir;
+  const fs::path path = dir.path / "ui.json";
+  app::UiPrefs p;
+  p.typed_targets = {{"height", "180cm"}, {"mass", "85kg"}};
+  p.imperial = true;
+  REQUIRE(app::save_ui_prefs(p, path));
+  const app::UiPrefs read = app::load_ui_prefs(path);
+  CHECK(read.typed_targets.size() == 2);
+  CHECK(read.typed_targets.at("height") == "180cm");
+  CHECK(read.imperial);
+  // The panel starts with them (it would have written back empty fields otherwise).
+  InProcessWindow w(options(dir.path / "s.json", "body"), read);
+  for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+  CHECK(w.view->prefs().typed_targets == read.typed_targets);
+  CHECK(w.view->prefs().imperial);
+  // Junk in the file is dropped, not trusted.
+  std::ofstream(path) << R"({"typed_targets": {"height": 5, "waist": ")" << std::string(100, 'x')
+                      << R"(", "hips": "100cm"}})";
+  const app::UiPrefs junk = app::load_ui_prefs(path);
+  CHECK(junk.typed_targets.size() == 1);
+  CHECK(junk.typed_targets.count("hips") == 1);
+}
