@@ -480,11 +480,18 @@ void GalleryView::draw_hover_details(const GalleryController& c, const LayoutRec
   // A tooltip over the grid covered the very cells being compared; the measurements table's
   // "hovered" column has the numbers. Inside the cell, one line says what differs most.
   if (!ImGui::GetIO().KeyShift) {
-    const std::string summary = c.space().cell_summary(*hover_details_, *best_.prepared);
+    std::string summary = c.space().cell_summary(*hover_details_, *best_.prepared);
     if (summary.empty()) return;
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float width = cell_max.x - cell_min.x - 8.0f;
     ImVec2 size = ImGui::CalcTextSize(summary.c_str(), nullptr, false, width);
+    // A small cell (a 5x5 photo grid) keeps most of its picture: the first item only, and
+    // nothing when even that would cover a third of it.
+    if (size.y > 0.3f * cell.h) {
+      summary = summary.substr(0, summary.find(", "));
+      size = ImGui::CalcTextSize(summary.c_str(), nullptr, false, width);
+      if (size.y > 0.3f * cell.h) return;
+    }
     // Above the cell's "edge of the range" label when it has one.
     const float lift = points[static_cast<std::size_t>(hovered_)].clamped ? size.y + 8.0f : 0.0f;
     const ImVec2 p(cell_min.x + 4.0f, cell_max.y - 6.0f - size.y - lift);

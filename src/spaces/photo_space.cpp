@@ -3,6 +3,8 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -147,6 +149,31 @@ void PhotoSpace::draw_inspector(const app::PreparedCell& shown, const char* show
     }
   }
   ImGui::EndTable();
+}
+
+std::string PhotoSpace::cell_summary(const app::PreparedCell& cell,
+                                     const app::PreparedCell& reference) const {
+  // The two parameters that differ most, on the window's -100 .. +100 scale.
+  const auto& a = static_cast<const PhotoCell&>(cell);
+  const auto& b = static_cast<const PhotoCell&>(reference);
+  std::array<int, kPhotoParameters> order{};
+  for (int i = 0; i < kPhotoParameters; ++i) order[static_cast<std::size_t>(i)] = i;
+  const auto diff = [&](int i) {
+    return 100.0 *
+           static_cast<double>(a.p[static_cast<std::size_t>(i)] - b.p[static_cast<std::size_t>(i)]);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](int x, int y) { return std::abs(diff(x)) > std::abs(diff(y)); });
+  std::string text;
+  char item[64];
+  for (int j = 0; j < 2; ++j) {
+    const int i = order[static_cast<std::size_t>(j)];
+    if (std::abs(diff(i)) < 0.5) break;
+    std::snprintf(item, sizeof item, "%s%s %+.0f", text.empty() ? "" : ", ",
+                  photo_parameter_name(i).c_str(), diff(i));
+    text += item;
+  }
+  return text.empty() ? "about the same as the current best" : text;
 }
 
 std::string PhotoSpace::export_point(const Eigen::VectorXd& x,

@@ -32,6 +32,8 @@ class PhotoSpace : public app::DesignSpace {
   std::shared_ptr<const app::PreparedCell> prepare(const Eigen::VectorXd& x,
                                                    bool details) const override;
   std::unique_ptr<app::CellContent> make_content() override;
+  std::string cell_summary(const app::PreparedCell& cell,
+                           const app::PreparedCell& reference) const override;
   void draw_inspector(const app::PreparedCell& shown, const char* shown_label,
                       const app::PreparedCell* reference,
                       const char* reference_label) const override;
