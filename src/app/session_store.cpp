@@ -114,17 +114,27 @@ FileStamp stamp_of(const fs::path& path) {
   return stamp;
 }
 
+fs::path unused_name_beside(const fs::path& path, const std::string& tag) {
+  const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
+                         std::chrono::system_clock::now().time_since_epoch())
+                         .count();
+  const std::string base = path.string() + "." + tag + "-" + std::to_string(stamp);
+  fs::path name = base;
+  std::error_code ec;
+  // symlink_status: a dangling link there is a name in use too.
+  for (int i = 1; fs::exists(fs::symlink_status(name, ec)); ++i) {
+    name = base + "-" + std::to_string(i);
+  }
+  return name;
+}
+
 GuardedSave save_session_guarded(const Session& session, const fs::path& path,
                                  const FileStamp& expected) {
   GuardedSave result;
   if (const FileStamp now = stamp_of(path); now.exists && now != expected) {
     result.conflict = true;
     result.stamp = now;
-    result.beside = path;
-    result.beside +=
-        ".conflict-" + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(
-                                          std::chrono::system_clock::now().time_since_epoch())
-                                          .count());
+    result.beside = unused_name_beside(path, "conflict");
     try {
       save_session(session, result.beside);
     } catch (const std::exception& e) {
@@ -161,15 +171,7 @@ LoadResult load_session(const fs::path& path, bool move_corrupt_aside) {
       result.problem = "session file " + path.string() + " is corrupt: " + e.what();
       return result;
     }
-    const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                           .count();
-    fs::path aside = path;
-    aside += ".corrupt-" + std::to_string(stamp);
-    for (int i = 1; fs::exists(aside, ec); ++i) {
-      aside = path;
-      aside += ".corrupt-" + std::to_string(stamp) + "-" + std::to_string(i);
-    }
+    const fs::path aside = unused_name_beside(path, "corrupt");
     fs::rename(path, aside, ec);
     result.problem = "session file " + path.string() + " is corrupt: " + e.what();
     if (ec) {

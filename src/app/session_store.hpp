@@ -43,6 +43,10 @@ struct FileStamp {
 };
 FileStamp stamp_of(const std::filesystem::path& path);
 
+// A name beside `path` for a copy set aside, "<path>.<tag>-<unix seconds>" (with "-1", "-2"...
+// when that exists): corrupt files, conflict copies. Nothing is ever replaced by it.
+std::filesystem::path unused_name_beside(const std::filesystem::path& path, const std::string& tag);
+
 // save_session() unless the file at `path` was replaced since this program last read or wrote
 // it (its stamp differs from `expected` and it exists): then the newer file is left as it is
 // and `session` goes beside it as "<name>.conflict-<time>". Never throws.

@@ -1,10 +1,10 @@
 #include "app/ui_prefs.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include <nlohmann/json.hpp>
 
+#include "app/session_store.hpp"
 #include "sps/json_fields.hpp"
 #include "util/atomic_file.hpp"
 #include "util/file_read.hpp"
@@ -23,16 +23,8 @@ constexpr std::size_t kMaxPrefsBytes = 1u << 20;
 // Moves a broken ui.json out of the way (never deleted: it may be something the user put there
 // by mistake) and says where it went.
 std::string set_aside(const std::filesystem::path& path, const std::string& why) {
-  const auto stamp = std::chrono::duration_cast<std::chrono::seconds>(
-                         std::chrono::system_clock::now().time_since_epoch())
-                         .count();
-  std::filesystem::path aside = path;
-  aside += ".corrupt-" + std::to_string(stamp);
+  const std::filesystem::path aside = unused_name_beside(path, "corrupt");
   std::error_code ec;
-  for (int i = 1; std::filesystem::exists(std::filesystem::symlink_status(aside, ec)); ++i) {
-    aside = path;
-    aside += ".corrupt-" + std::to_string(stamp) + "-" + std::to_string(i);
-  }
   std::filesystem::rename(path, aside, ec);
   std::string text = "the remembered window settings " + why + "; using defaults";
   if (ec) return text + " (could not move it aside: " + ec.message() + ")";

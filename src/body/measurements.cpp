@@ -233,8 +233,8 @@ void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces,
   }
   if ((bands & kArmBand) != 0) {
     m.upper_arm = arms ? 0.5 * upper_arm : kNaN;
-    const double shoulders = shoulder_width(model, mesh);
-    m.bideltoid = arms && std::isfinite(shoulders) ? shoulders + deltoids : kNaN;
+    // measure() took the shoulder joints' distance before the slices.
+    m.bideltoid = arms && std::isfinite(m.shoulder_width) ? m.shoulder_width + deltoids : kNaN;
   }
   if ((bands & kLegBand) != 0) {
     m.thigh = legs ? 0.5 * thigh : kNaN;

@@ -29,61 +29,80 @@ struct UnionFind {
   void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
 };
 
-// The points grouped by the pieces they were joined into.
-std::vector<SlicePiece> gather_pieces(const std::vector<Eigen::Vector2d>& points, UnionFind& uf) {
-  std::unordered_map<int, std::size_t> piece_of_root;
-  std::vector<SlicePiece> pieces;
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    const int root = uf.find(static_cast<int>(p));
-    auto it = piece_of_root.find(root);
-    if (it == piece_of_root.end()) {
-      it = piece_of_root.emplace(root, pieces.size()).first;
-      pieces.emplace_back();
+// Joins a plane's crossings of the faces' edges into connected pieces. Each crossed edge gets
+// one point, made by `make_point(a, b)` (a < b) the first time a face crossing it is cut, and
+// shared with the other face on that edge; the two points of one face belong together.
+class SliceBuilder {
+ public:
+  // `up`: which corners lie on the plane's positive side (a corner on the plane counts as
+  // positive, so every crossing lies strictly inside an edge).
+  template <class MakePoint>
+  void cut(const std::uint32_t (&v)[3], const bool (&up)[3], MakePoint&& make_point) {
+    if (up[0] == up[1] && up[1] == up[2]) return;
+    int ids[2];
+    int n = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int a = e, b = (e + 1) % 3;
+      if (up[a] != up[b]) ids[n++] = point_on(v[a], v[b], make_point);
     }
-    pieces[it->second].points.push_back(points[p]);
+    if (n == 2) uf_.unite(ids[0], ids[1]);
   }
-  return pieces;
-}
+
+  // The points grouped by the pieces they were joined into.
+  std::vector<SlicePiece> pieces() {
+    std::unordered_map<int, std::size_t> piece_of_root;
+    std::vector<SlicePiece> pieces;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const int root = uf_.find(static_cast<int>(p));
+      auto it = piece_of_root.find(root);
+      if (it == piece_of_root.end()) {
+        it = piece_of_root.emplace(root, pieces.size()).first;
+        pieces.emplace_back();
+      }
+      pieces[it->second].points.push_back(points_[p]);
+    }
+    return pieces;
+  }
+
+ private:
+  template <class MakePoint>
+  int point_on(std::uint32_t a, std::uint32_t b, MakePoint& make_point) {
+    if (a > b) std::swap(a, b);
+    const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | b;
+    const auto it = edge_point_.find(key);
+    if (it != edge_point_.end()) return it->second;
+    points_.push_back(make_point(a, b));
+    const int id = uf_.add();
+    edge_point_.emplace(key, id);
+    return id;
+  }
+
+  std::unordered_map<std::uint64_t, int> edge_point_;  // edge key -> point id
+  std::vector<Eigen::Vector2d> points_;
+  UnionFind uf_;
+};
 
 // The slice through the faces listed (ascending face order, as a pass over all faces visits
 // them), or through every face when `face_ids` is null.
 std::vector<SlicePiece> slice_faces(const Vertices& vertices, const Faces& faces, double h,
                                     const std::vector<Eigen::Index>* face_ids) {
-  // A vertex exactly on the plane is nudged up (treated as above) so every crossing lies
-  // strictly inside an edge and is identified by that edge.
   auto above = [&](std::uint32_t v) { return static_cast<double>(vertices(v, 1)) >= h; };
-  std::unordered_map<std::uint64_t, int> edge_point;  // edge key -> point id
-  std::vector<Eigen::Vector2d> points;
-  UnionFind uf;
-  auto point_on = [&](std::uint32_t a, std::uint32_t b) {
-    if (a > b) std::swap(a, b);
-    const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | b;
-    const auto it = edge_point.find(key);
-    if (it != edge_point.end()) return it->second;
+  auto make_point = [&](std::uint32_t a, std::uint32_t b) {
     const double ya = vertices(a, 1), yb = vertices(b, 1);
     const double t = (h - ya) / (yb - ya);
-    points.emplace_back(vertices(a, 0) + t * (vertices(b, 0) - vertices(a, 0)),
-                        vertices(a, 2) + t * (vertices(b, 2) - vertices(a, 2)));
-    const int id = uf.add();
-    edge_point.emplace(key, id);
-    return id;
+    return Eigen::Vector2d(vertices(a, 0) + t * (vertices(b, 0) - vertices(a, 0)),
+                           vertices(a, 2) + t * (vertices(b, 2) - vertices(a, 2)));
   };
+  SliceBuilder builder;
   const Eigen::Index count =
       face_ids != nullptr ? static_cast<Eigen::Index>(face_ids->size()) : faces.rows();
   for (Eigen::Index k = 0; k < count; ++k) {
     const Eigen::Index i = face_ids != nullptr ? (*face_ids)[static_cast<std::size_t>(k)] : k;
     const std::uint32_t v[3] = {faces(i, 0), faces(i, 1), faces(i, 2)};
     const bool up[3] = {above(v[0]), above(v[1]), above(v[2])};
-    if (up[0] == up[1] && up[1] == up[2]) continue;
-    int ids[2];
-    int n = 0;
-    for (int e = 0; e < 3; ++e) {
-      const int a = e, b = (e + 1) % 3;
-      if (up[a] != up[b]) ids[n++] = point_on(v[a], v[b]);
-    }
-    if (n == 2) uf.unite(ids[0], ids[1]);
+    builder.cut(v, up, make_point);
   }
-  return gather_pieces(points, uf);
+  return builder.pieces();
 }
 
 }  // namespace
@@ -109,46 +128,27 @@ std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
   for (Eigen::Index i = 0; i < vertices.rows(); ++i) {
     distance[i] = (vertices.row(i).cast<double>().transpose() - plane.origin).dot(plane.normal);
   }
-  std::unordered_map<std::uint64_t, int> edge_point;
-  std::vector<Eigen::Vector2d> points;
-  UnionFind uf;
-  auto point_on = [&](std::uint32_t a, std::uint32_t b) {
-    if (a > b) std::swap(a, b);
-    const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | b;
-    const auto it = edge_point.find(key);
-    if (it != edge_point.end()) return it->second;
+  auto make_point = [&](std::uint32_t a, std::uint32_t b) {
     const double t = distance[a] / (distance[a] - distance[b]);
     const Eigen::Vector3d pa = vertices.row(a).cast<double>().transpose();
     const Eigen::Vector3d pb = vertices.row(b).cast<double>().transpose();
     const Eigen::Vector3d q = pa + t * (pb - pa) - plane.origin;
-    points.emplace_back(q.dot(plane.u), q.dot(plane.v));
-    const int id = uf.add();
-    edge_point.emplace(key, id);
-    return id;
+    return Eigen::Vector2d(q.dot(plane.u), q.dot(plane.v));
   };
+  const auto near = [&](std::uint32_t corner) {
+    return (vertices.row(corner).cast<double>().transpose() - plane.origin).squaredNorm() <=
+           radius * radius;
+  };
+  SliceBuilder builder;
   for (Eigen::Index i = 0; i < faces.rows(); ++i) {
     const std::uint32_t v[3] = {faces(i, 0), faces(i, 1), faces(i, 2)};
     if (v[0] >= vertices.rows() || v[1] >= vertices.rows() || v[2] >= vertices.rows()) continue;
     const bool up[3] = {distance[v[0]] >= 0.0, distance[v[1]] >= 0.0, distance[v[2]] >= 0.0};
     if (up[0] == up[1] && up[1] == up[2]) continue;
-    if (std::isfinite(radius)) {
-      bool near = false;
-      for (const auto corner : v) {
-        near = near ||
-               (vertices.row(corner).cast<double>().transpose() - plane.origin).squaredNorm() <=
-                   radius * radius;
-      }
-      if (!near) continue;
-    }
-    int ids[2];
-    int n = 0;
-    for (int e = 0; e < 3; ++e) {
-      const int a = e, b = (e + 1) % 3;
-      if (up[a] != up[b]) ids[n++] = point_on(v[a], v[b]);
-    }
-    if (n == 2) uf.unite(ids[0], ids[1]);
+    if (std::isfinite(radius) && !near(v[0]) && !near(v[1]) && !near(v[2])) continue;
+    builder.cut(v, up, make_point);
   }
-  return gather_pieces(points, uf);
+  return builder.pieces();
 }
 
 std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces, double h) {
