@@ -5,7 +5,8 @@
 # knees and feet. Rendered with the project's headless renderer (`sequential-gallery render`, EGL
 # surfaceless) and put together with ImageMagick's montage.
 # usage: tools/make_contact_sheet.sh [EXECUTABLE] [MODELS...]   (default: female male neutral)
-# writes docs/default-model-<model>.png and docs/default-model-<model>-closeup.png
+# writes docs/default-model-<model>.png, docs/default-model-<model>-closeup.png and
+# docs/default-model-{female,male}-random.png
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=${1:-./build/sequential-gallery}
@@ -68,4 +69,32 @@ for model in "${models[@]}"; do
     -geometry 1000x1000+3+3 -pointsize 20 -background white \
     "docs/default-model-$model-closeup.png"
   echo "wrote docs/default-model-$model-closeup.png"
+done
+
+# Nine random bodies of the female and of the male model (betas ~ N(0, 1) on the first 10
+# components, seeded), front and three-quarter view: what a person sees of a population, as
+# opposed to one component at a time.
+for model in female male; do
+  args=()
+  for i in 1 2 3 4 5 6 7 8 9; do
+    betas=$(awk -v seed="$i" -v m="$model" 'BEGIN {
+      srand(seed * 7919 + (m == "male") * 104729);
+      s = "";
+      for (k = 0; k < 10; ++k) {
+        z = sqrt(-2 * log(1 - rand())) * cos(6.283185307 * rand());
+        s = s (k ? "," : "") sprintf("%.2f", z);
+      }
+      print s }')
+    read -r h m < <(measure "$model" "$betas")
+    for view in front three-quarter; do
+      "$exe" render --model "$model" --betas="$betas" --view "$view" --size 270x330 \
+        -o "$tmp/random-$i-$view.png" >/dev/null
+    done
+    montage "$tmp/random-$i-front.png" "$tmp/random-$i-three-quarter.png" -tile 2x1 \
+      -geometry +0+0 "$tmp/random-$i.png"
+    args+=(-label "$(printf '%s %d: %.2f m, %.1f kg' "$model" "$i" "$h" "$m")" "$tmp/random-$i.png")
+  done
+  montage "${args[@]}" -tile 3x3 -geometry +3+3 -pointsize 13 -background white \
+    "docs/default-model-$model-random.png"
+  echo "wrote docs/default-model-$model-random.png"
 done

@@ -20,11 +20,14 @@ namespace {
 const char* const kUsage =
     "usage: sequential-gallery bench-survey [--female FEMALE.csv] [--male MALE.csv]\n"
     "                                       [--samples N] [--seed S] [--components K]\n"
+    "                                       [--models-dir DIR]\n"
     "Compares the built-in body models with the ANSUR II public survey files\n"
     "(ANSUR_II_FEMALE_Public.csv, ANSUR_II_MALE_Public.csv): the female model with the women,\n"
     "the male model with the men and, when both files are given, the neutral model with\n"
     "everyone. N bodies per model (default 300) with betas ~ N(0, 1) on K components\n"
-    "(default 10). Lengths in cm, mass in kg.\n";
+    "(default 10). Lengths in cm, mass in kg. --models-dir reads DIR/body_{female,male,\n"
+    "neutral}.npz (as written by generate-default-model --output-dir) instead of the built-in\n"
+    "models.\n";
 
 void print(const body::PopulationComparison& c, const std::string& against) {
   std::printf("\nmodel %s (%d bodies) against %s (%d people)\n", c.model_name.c_str(), c.bodies,
@@ -61,7 +64,7 @@ int run(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  args.reject_unknown({"help", "female", "male", "samples", "seed", "components"});
+  args.reject_unknown({"help", "female", "male", "samples", "seed", "components", "models-dir"});
   const auto female_path = args.get("female");
   const auto male_path = args.get("male");
   if (!female_path && !male_path) {
@@ -72,24 +75,29 @@ int run(int argc, char** argv) {
   const int components = args.get_int("components", 10);
   if (components < 1 || components > 300) throw cli::ArgError("--components must be 1..300");
   const auto seed = static_cast<unsigned>(args.get_int("seed", 1));
+  // Models freshly written by generate-default-model --output-dir, before they are embedded.
+  const auto models_dir = args.get("models-dir");
+  auto model = [&](const std::string& name) {
+    return models_dir
+               ? body::load_model(std::filesystem::path(*models_dir) / ("body_" + name + ".npz"),
+                                  components)
+               : body::load_builtin_model(name, components);
+  };
   // Both files are read (and checked) before any body is measured.
   const auto columns = body::survey_columns();
   std::optional<body::SurveyTable> women, men;
   if (female_path) women = body::read_survey_csv(*female_path, columns);
   if (male_path) men = body::read_survey_csv(*male_path, columns);
   if (women) {
-    print(body::compare_with_survey(body::load_builtin_model("female", components), {&*women},
-                                    samples, seed),
+    print(body::compare_with_survey(model("female"), {&*women}, samples, seed),
           "ANSUR II women, " + women->source.filename().string());
   }
   if (men) {
-    print(body::compare_with_survey(body::load_builtin_model("male", components), {&*men}, samples,
-                                    seed),
+    print(body::compare_with_survey(model("male"), {&*men}, samples, seed),
           "ANSUR II men, " + men->source.filename().string());
   }
   if (women && men) {
-    print(body::compare_with_survey(body::load_builtin_model("neutral", components),
-                                    {&*women, &*men}, samples, seed),
+    print(body::compare_with_survey(model("neutral"), {&*women, &*men}, samples, seed),
           "ANSUR II women and men pooled");
   }
   return 0;

@@ -66,7 +66,7 @@ refuse "no measurements to hold" --space photo --hold height
 refuse "out of reach.*nearest reachable: height" --hold height=0.5
 refuse "out of reach.*nearest reachable: height" --hold height=3
 refuse "out of reach.*nearest reachable: mass" --hold mass=500
-refuse "out of reach.*nearest reachable: bmi" --hold bmi=60
+refuse "out of reach.*nearest reachable: bmi" --hold bmi=90
 # Height, mass and BMI that no body has together.
 refuse "make a BMI of 11.1, not 40.0" --hold height=1.9 --hold mass=40 --hold bmi=40
 refuse "is given twice" --hold height=1.8 --hold height=1.7

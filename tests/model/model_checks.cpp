@@ -75,6 +75,38 @@ double stature(const Points& v) {
   return hi - lo;
 }
 
+double breast_projection(const Points& v, double window) {
+  double lo = 1e9, hi = -1e9, mid_x = 0.0;
+  for (const auto& p : v) {
+    lo = std::min(lo, p.y());
+    hi = std::max(hi, p.y());
+    mid_x += p.x();
+  }
+  mid_x /= static_cast<double>(v.size());
+  const double H = hi - lo;
+  // The forward profile of the nipple line in bins of 0.5% of the stature, 60-80% from the
+  // soles.
+  const double bin = 0.005 * H, base = lo + 0.60 * H;
+  constexpr int kBins = 40;
+  std::vector<double> profile(kBins, -1e9);
+  for (const auto& p : v) {
+    const double side = std::abs(p.x() - mid_x);
+    if (side < 0.035 * H || side > 0.075 * H) continue;
+    const int b = static_cast<int>(std::floor((p.y() - base) / bin));
+    if (b >= 0 && b < kBins) profile[b] = std::max(profile[b], p.z());
+  }
+  const int below = static_cast<int>(std::lround(window * H / bin));
+  double projection = 0.0;
+  for (int b = 20; b < 36; ++b) {  // the chest band, 70-78% of the stature
+    if (profile[b] < -1e8) continue;
+    double fold = profile[b];
+    for (int c = std::max(0, b - below); c < b; ++c)
+      if (profile[c] > -1e8) fold = std::min(fold, profile[c]);
+    projection = std::max(projection, profile[b] - fold);
+  }
+  return projection;
+}
+
 namespace {
 
 // Segment p-q against triangle (a, b, c), Moller-Trumbore.

@@ -32,6 +32,15 @@ int inverted_triangles(const Points& base, const Points& deformed, const Tris& f
 
 double stature(const Points& v);
 
+// How far the chest stands forward of the fold below it, in metres. Along the nipple line
+// (3.5-7.5% of the stature from the body's midline, on the front) the forward profile z(y)
+// in bins of 0.5% of the stature; at each level of the chest band (70-78% of the stature from
+// the soles; the nipples are at about 72%), the profile there minus its least value within
+// `window` (a fraction of the stature) below: the inframammary fold under a breast, the lower
+// border of a pectoral. A slim waist farther down, or a belly that rises higher than the
+// chest, does not count.
+double breast_projection(const Points& v, double window);
+
 // Number of intersecting triangle pairs between faces of set A and faces of set B (pairs
 // sharing a vertex are skipped).
 int intersecting_pairs(const Points& v, const Tris& faces, const std::vector<int>& a,

@@ -3,6 +3,7 @@
 // components is visible, and bodies across the +-3 box stay plausible.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -349,6 +350,49 @@ TEST_CASE("bodies at +-3 per component and at random betas in [-3, 3]^10 are pla
         "arm-torso and %d leg-leg intersecting pairs\n",
         m.name.c_str(), index, lowest, highest, worst_inverted, worst_arm, worst_legs);
   }
+}
+
+TEST_CASE("no male body shows breasts, and the female model's breasts span a range", "[model]") {
+  // Each of the first 10 components at -3 and +3, and 500 uniform points of the [-3, 3]^10 box.
+  std::vector<Eigen::VectorXf> betas = test_betas();
+  betas.resize(20);
+  std::mt19937_64 rng(2024);
+  for (int i = 0; i < 500; ++i) {
+    Eigen::VectorXf b(10);
+    for (int k = 0; k < 10; ++k)
+      b[k] = float(-3.0 + 6.0 * double(rng() >> 11) / 9007199254740992.0);
+    betas.push_back(b);
+  }
+  // The fold is looked for within 4% of the stature (7 cm) below each level of the chest.
+  constexpr double kWindow = 0.04;
+  auto projections = [&](const std::string& name) {
+    std::vector<double> out;
+    for (const Eigen::VectorXf& b : betas)
+      out.push_back(mc::breast_projection(shape(generated(name), b), kWindow));
+    return out;
+  };
+  auto mean_body = [&](const std::string& name) {
+    return mc::breast_projection(shape(generated(name), Eigen::VectorXf::Zero(0)), kWindow);
+  };
+  const std::vector<double> men = projections("male");
+  const std::vector<double> women = projections("female");
+  const auto [men_lo, men_hi] = std::minmax_element(men.begin(), men.end());
+  const auto [women_lo, women_hi] = std::minmax_element(women.begin(), women.end());
+  INFO("male body with the largest projection: betas "
+       << betas[static_cast<std::size_t>(men_hi - men.begin())].transpose());
+  std::printf(
+      "chest projection over its fold (cm): male %.1f - %.1f (mean body %.1f), female %.1f - "
+      "%.1f (mean body %.1f)\n",
+      100 * *men_lo, 100 * *men_hi, 100 * mean_body("male"), 100 * *women_lo, 100 * *women_hi,
+      100 * mean_body("female"));
+  // The average man's pectoral stands about a centimetre over its lower border, the average
+  // woman's breast two to three; a bodybuilder's pectoral up to about 4 cm, which is where the
+  // male model's corners of the box (big pectorals on a slim waist) end.
+  CHECK(mean_body("male") < 0.012);
+  CHECK(mean_body("female") > 0.02);
+  CHECK(mean_body("female") > 2.0 * mean_body("male"));
+  CHECK(*men_hi < 0.04);
+  CHECK(*women_hi - *women_lo > 0.03);
 }
 
 #ifdef SG_HAVE_BODY_LIBRARY

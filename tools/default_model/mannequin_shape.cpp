@@ -202,18 +202,23 @@ Mannequin::Mannequin() {
   levels_ = {
       {0.760, 0.150, 0.095, -0.012}, {0.830, 0.157, 0.100, -0.012}, {0.880, 0.158, 0.102, -0.010},
       {0.940, 0.154, 0.104, -0.002}, {1.010, 0.142, 0.099, 0.008},  {1.070, 0.134, 0.097, 0.010},
-      {1.140, 0.141, 0.103, 0.006},  {1.230, 0.156, 0.113, 0.002},  {1.320, 0.160, 0.108, -0.012},
-      {1.400, 0.138, 0.086, -0.028}, {1.450, 0.080, 0.060, -0.028}};
+      {1.140, 0.141, 0.100, 0.004},  {1.230, 0.156, 0.109, 0.002},  {1.320, 0.160, 0.108, -0.006},
+      {1.400, 0.138, 0.088, -0.026}, {1.450, 0.080, 0.060, -0.028}};
 
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   for (int s = 0; s < 2; ++s) {
     auto M = [&](const Vec3& p) { return s == 0 ? p : mirror(p); };
     const double sx = s == 0 ? 1.0 : -1.0;
-    // Buttocks, pectorals, trapezius.
+    // Buttocks, pectorals, trapezius. The pectoral is a broad, flat plate from the sternum to
+    // the front of the armpit with a nearly level lower border, fuller at the armpit, and the
+    // upper chest stays full up to the collar bone (the loft above): round ellipsoids here, or
+    // a chest that recedes above its fullest level, read as breasts. The female model's
+    // breasts are a displacement field of their own (population.cpp).
     torso_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.072, 0.865, -0.042), Y, X, 0.095, 0.085, 0.068), 0.04});
-    torso_parts_.push_back(
-        {ellipsoid(Vec3(sx * 0.074, 1.265, 0.042), Y, X, 0.06, 0.078, 0.06), 0.04});
+    torso_parts_.push_back({capsule(Vec3(sx * 0.03, 1.29, 0.083), Vec3(sx * 0.13, 1.31, 0.060), Y,
+                                    0.052, 0.021, 0.048, 0.025, 0.02, 0.03),
+                            0.035});
     torso_parts_.push_back({capsule(Vec3(0, 1.45, -0.04), M(Vec3(0.16, 1.40, -0.035)), Y, 0.035,
                                     0.05, 0.03, 0.045, 0.03, 0.03),
                             0.04});

@@ -57,6 +57,21 @@ Eigen::MatrixXd cholesky_of(const SurveyTable& t) {
 // The independent factors' amplitudes below are per unit of this; 1.45 makes each of them big
 // enough to be seen in a grid cell (1 px ~ 4.5 mm) as its own principal component.
 constexpr double kFactorScale = 1.5;
+
+// Where each sex sits on the factors that differ between the sexes, in SDs of the factor
+// (the factor's SD is the within-sex spread). Men carry their fat centrally (belly, flanks:
+// "android"), women on the hips, buttocks and thighs ("gynoid") and more of it on the limbs
+// (J. Vague, "The degree of masculine differentiation of obesities", Am. J. Clin. Nutr. 4,
+// 1956; DXA studies find women's leg fat share about 1.3 times men's). Men have about 40%
+// more skeletal muscle, most of the difference in the upper body (I. Janssen et al.,
+// "Skeletal muscle mass and distribution in 468 men and women aged 18-88 yr", J. Appl.
+// Physiol. 89, 2000). Women's shoulders slope more and their lumbar curve is deeper. The
+// girths these shifts change are calibrated back to the survey's means (Calibration below).
+struct FactorShift {
+  double fat_distribution, muscle, shoulder_slope, lordosis, limb_fat;
+};
+constexpr FactorShift kFemaleShift{-0.2, -0.6, -0.3, 0.3, 0.5};
+constexpr FactorShift kMaleShift{0.8, 0.7, 0.3, -0.3, -0.5};
 constexpr double kStatureTruncation = 1.4;
 
 }  // namespace
@@ -81,10 +96,25 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     z = L * z;
     for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
     IndependentFactors& f = a.f;
-    for (double* x : {&f.fat_distribution, &f.fat_layer, &f.muscle, &f.bust, &f.shoulder_slope,
-                      &f.posture, &f.lordosis, &f.head_forward, &f.neck_length,
-                      &f.shoulders_forward, &f.knee_alignment, &f.limb_fat})
-      *x = kFactorScale * normal.truncated(truncate_factors);
+    double* const factors[] = {
+        &f.fat_distribution, &f.fat_layer,         &f.muscle,         &f.bust,
+        &f.shoulder_slope,   &f.posture,           &f.lordosis,       &f.head_forward,
+        &f.neck_length,      &f.shoulders_forward, &f.knee_alignment, &f.limb_fat};
+    const FactorShift& shift = female ? kFemaleShift : kMaleShift;
+    const double means[] = {shift.fat_distribution,
+                            0,
+                            shift.muscle,
+                            0,
+                            shift.shoulder_slope,
+                            0,
+                            shift.lordosis,
+                            0,
+                            0,
+                            0,
+                            0,
+                            shift.limb_fat};
+    for (int k = 0; k < 12; ++k)
+      *factors[k] = kFactorScale * (means[k] + normal.truncated(truncate_factors));
     people.push_back(a);
   }
   return people;
@@ -128,20 +158,29 @@ constexpr double kTemplateStature = 1.70;
 constexpr double kLayerRadius = 0.08;
 constexpr double kLayerCap = 0.11;
 
+// Per-sex calibration of the cross sections (see DeformationModel::parameters).
+struct Calibration {
+  double pelvis, waist, chest, neck, thigh, calf, biceps;
+};
+constexpr Calibration kFemaleCalibration{0.96, 1.45, 0.80, 0.80, 1.25, 1.24, 1.12};
+constexpr Calibration kMaleCalibration{0.95, 1.28, 1.04, 0.87, 1.28, 1.12, 1.10};
+
 double gauss(double x, double centre, double sd) {
   const double t = (x - centre) / sd;
   return std::exp(-0.5 * t * t);
 }
 
 Vec3 breast_centre(int side) {
-  return Vec3(side == 0 ? 0.085 : -0.085, 1.255, 0.10);
+  return Vec3(side == 0 ? 0.088 : -0.088, 1.25, 0.10);
 }
 
 double breast_bump(const Vec3& p, int side) {
   if (p.z() < 0.0) return 0.0;
   const Vec3 d = p - breast_centre(side);
   const double r2 = d.x() * d.x() + 1.3 * d.y() * d.y() + 0.5 * d.z() * d.z();
-  return std::exp(-r2 / (2 * 0.05 * 0.05)) * smoothstep(0.0, 0.06, p.z());
+  // Narrow enough across that the cleavage between the breasts stays back (the fields are
+  // smoothed over the mesh afterwards, which widens them).
+  return std::exp(-r2 / (2 * 0.044 * 0.044)) * smoothstep(0.0, 0.06, p.z());
 }
 
 // Forward lean of everything above the lower back, as a shear (dz per metre above 1.0 m).
@@ -246,11 +285,16 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     // Fat layer: all over the torso and limbs, thinner on head, hands and feet.
     set_field(kFatLayer,
               above_feet * std::max(0.0, 1.0 - head - extremity) * (0.6 + 0.4 * torso) * radial);
-    // Muscles: deltoids and upper arms, forearms, trapezius, pectorals, thighs, calves.
+    // Muscles: deltoids and upper arms, forearms, trapezius, the neck, pectorals (a plate on
+    // each side of the sternum, not a round bump), thighs, calves.
+    const double pectoral = front * gauss(p.y(), 1.285, 0.045) *
+                            smoothstep(0.0, 0.04, std::abs(p.x())) *
+                            (1.0 - smoothstep(0.12, 0.17, std::abs(p.x())));
     const double muscle = w(kLeftShoulder) + w(kRightShoulder) +
                           0.3 * (w(kLeftElbow) + w(kRightElbow)) + w(kLeftCollar) +
-                          w(kRightCollar) + w(kSpine3) * front * gauss(p.y(), 1.28, 0.06) +
-                          0.8 * (w(kLeftHip) + w(kRightHip)) + 0.8 * (w(kLeftKnee) + w(kRightKnee));
+                          w(kRightCollar) + 0.6 * w(kNeck) * (1.0 - front) +
+                          0.6 * w(kSpine3) * pectoral + 0.8 * (w(kLeftHip) + w(kRightHip)) +
+                          0.8 * (w(kLeftKnee) + w(kRightKnee));
     set_field(kMuscle, above_feet * muscle * radial);
     // Posture: the upper body leans forward; arms move with their shoulder.
     const double lean =
@@ -337,18 +381,19 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double foot = r(k_foot_length);
   const double head = std::sqrt(r(k_head_circ) * r(k_head_length));
 
-  // Cross sections. The mannequin was modelled slimmer than the survey's reference person (its
-  // tape-measure waist read 75.5 cm for a survey mean of 89.9 cm, its volume gave 64 kg for
-  // 77 kg): these factors calibrate it, so that the mean bodies' mass matches the survey.
-  constexpr double kPelvisCal = 1.09, kWaistCal = 1.17, kChestCal = 1.07, kLimbCal = 1.08;
-  const double pelvis_w = kPelvisCal * r(k_hip_breadth);
-  const double pelvis_d = kPelvisCal * r(k_buttock_depth);
-  const double waist_w = kWaistCal * r(k_waist_breadth), waist_d = kWaistCal * r(k_waist_depth);
-  const double chest_w = kChestCal * r(k_chest_breadth), chest_d = kChestCal * r(k_chest_depth);
-  const double neck = r(k_neck_circ);
-  const double thigh = kLimbCal * r(k_thigh_circ), calf = kLimbCal * r(k_calf_circ);
+  // Cross sections. The mannequin was modelled slimmer than the survey's reference person, and
+  // the fields each sex gets on average (breasts, fat distribution, muscle) add to some
+  // girths: these factors calibrate both, per sex, so that the mean bodies' girths measured
+  // by the tool's own code (`bench-survey --models-dir`) match the survey's means.
+  const Calibration& cal = a.female ? kFemaleCalibration : kMaleCalibration;
+  const double pelvis_w = cal.pelvis * r(k_hip_breadth);
+  const double pelvis_d = cal.pelvis * r(k_buttock_depth);
+  const double waist_w = cal.waist * r(k_waist_breadth), waist_d = cal.waist * r(k_waist_depth);
+  const double chest_w = cal.chest * r(k_chest_breadth), chest_d = cal.chest * r(k_chest_depth);
+  const double neck = cal.neck * r(k_neck_circ);
+  const double thigh = cal.thigh * r(k_thigh_circ), calf = cal.calf * r(k_calf_circ);
   const double ankle = r(k_ankle_circ);
-  const double biceps = kLimbCal * r(k_biceps_circ), forearm_g = r(k_forearm_circ);
+  const double biceps = cal.biceps * r(k_biceps_circ), forearm_g = r(k_forearm_circ);
   const double wrist = r(k_wrist_circ);
   const double shoulder = r(k_biacromial);
   const double pelvis_breadth = r(k_bicristal);
@@ -413,16 +458,17 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // their own factor; men's are a slight pectoral curve.
   const SurveyTable& own = a.female ? kFemale : kMale;
   const double chest_z = (a.m[k_chest_circ] - own.mean[k_chest_circ]) / own.sd[k_chest_circ];
-  const double breast = a.female ? std::max(0.0, 0.024 + 0.006 * chest_z + 0.016 * f.bust)
-                                 : std::max(0.0, 0.004 + 0.002 * f.muscle + 0.002 * chest_z);
+  // Men get none: the template's flat pectorals and the muscle field shape their chest, and
+  // no male body anywhere in the box may show breasts.
+  const double breast = a.female ? std::max(0.0, 0.046 + 0.008 * chest_z + 0.016 * f.bust) : 0.0;
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
-  t[kFields + kBelly] = 0.018 * f.fat_distribution + 0.004 * (a.female ? -1.0 : 1.0);
-  t[kFields + kGluteofemoral] = -0.015 * f.fat_distribution + 0.004 * (a.female ? 1.0 : -1.0);
+  t[kFields + kBelly] = 0.018 * f.fat_distribution;
+  t[kFields + kGluteofemoral] = -0.015 * f.fat_distribution;
   t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
-  t[kFields + kMuscle] = 0.006 * f.muscle + 0.002 * (a.female ? -1.0 : 1.0);
+  t[kFields + kMuscle] = 0.009 * f.muscle;
   t[kFields + kPostureShear] = 0.021 * f.posture;
   t[kFields + kHeadForward] = 0.045 * f.head_forward;
-  t[kFields + kLordosis] = 0.023 * f.lordosis + 0.003 * (a.female ? 1.0 : -1.0);
+  t[kFields + kLordosis] = 0.023 * f.lordosis;
   t[kFields + kShouldersForward] = 0.0115 * f.shoulders_forward;
   t[kFields + kLimbFat] = 0.006 * f.limb_fat;
   t[kFields + kKneeAlignment] = 0.0105 * f.knee_alignment;
