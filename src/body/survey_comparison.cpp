@@ -30,7 +30,8 @@ double model_value(const std::string& name, const Measurements& m) {
   return m.*(kind->field);
 }
 
-// The survey's value for one person, in SI.
+}  // namespace
+
 double survey_value(const SurveyMeasure& measure, const SurveyTable& table, Eigen::Index row) {
   const auto col = [&](const std::string& c) { return table.values(row, table.column(c)); };
   if (measure.name == "bmi") {
@@ -43,8 +44,6 @@ double survey_value(const SurveyMeasure& measure, const SurveyTable& table, Eige
   for (const auto& c : measure.columns) sum += col(c);
   return sum * measure.scale;
 }
-
-}  // namespace
 
 Distribution distribution_of(std::vector<double> values) {
   values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }),
@@ -105,6 +104,27 @@ std::vector<std::string> survey_columns() {
   return columns;
 }
 
+double correlation_of(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size()) throw std::invalid_argument("correlation_of: lengths differ");
+  double n = 0.0, sx = 0.0, sy = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
+    n += 1.0;
+    sx += x[i];
+    sy += y[i];
+  }
+  if (n < 3.0) return kNaN;
+  const double mx = sx / n, my = sy / n;
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
+    sxx += (x[i] - mx) * (x[i] - mx);
+    syy += (y[i] - my) * (y[i] - my);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  return sxx > 0.0 && syy > 0.0 ? sxy / std::sqrt(sxx * syy) : kNaN;
+}
+
 PopulationComparison compare_with_survey(const Model& model,
                                          const std::vector<const SurveyTable*>& survey, int samples,
                                          unsigned seed) {
@@ -141,6 +161,24 @@ PopulationComparison compare_with_survey(const Model& model,
         row.survey.sd > 0.0 ? (row.model.mean - row.survey.mean) / row.survey.sd : kNaN;
     out.rows.push_back(row);
   }
+  // The correlations of the measures themselves (ratios and BMI follow from them).
+  for (std::size_t i = 0; i < measures.size(); ++i) {
+    for (std::size_t j = i + 1; j < measures.size(); ++j) {
+      const auto plain = [&](std::size_t k) {
+        return measures[k].name != "bmi" && measures[k].name.find('/') == std::string::npos;
+      };
+      if (!plain(i) || !plain(j)) continue;
+      out.correlations.push_back({measures[i].name, measures[j].name,
+                                  correlation_of(survey_values[i], survey_values[j]),
+                                  correlation_of(model_values[i], model_values[j])});
+    }
+  }
+  std::stable_sort(out.correlations.begin(), out.correlations.end(),
+                   [](const CorrelationGap& p, const CorrelationGap& q) {
+                     const double a = std::abs(p.model - p.survey),
+                                  b = std::abs(q.model - q.survey);
+                     return (std::isnan(b) && !std::isnan(a)) || a > b;
+                   });
   return out;
 }
 

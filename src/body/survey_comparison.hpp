@@ -29,6 +29,8 @@ struct SurveyMeasure {
 // The measures compared, and every survey column they need (for read_survey_csv).
 const std::vector<SurveyMeasure>& survey_measures();
 std::vector<std::string> survey_columns();
+// The survey's value of `measure` for the person in `row`, in SI (ratios and BMI as they are).
+double survey_value(const SurveyMeasure& measure, const SurveyTable& table, Eigen::Index row);
 
 struct ComparisonRow {
   std::string name;
@@ -36,11 +38,24 @@ struct ComparisonRow {
   double mean_gap_sd = 0.0;  // (model mean - survey mean) / survey SD
 };
 
+// One entry of the correlation matrices: Pearson's r between two measures, in the survey and
+// in the model's population.
+struct CorrelationGap {
+  std::string a, b;
+  double survey = 0.0, model = 0.0;
+};
+
 struct PopulationComparison {
   std::string model_name;
   int bodies = 0, people = 0;
   std::vector<ComparisonRow> rows;
+  // Every pair of the measures that are not ratios or BMI, the largest |model - survey| first.
+  std::vector<CorrelationGap> correlations;
 };
+
+// Pearson's correlation of two equally long series (pairs with a NaN skipped); NaN with fewer
+// than 3 pairs or no spread.
+double correlation_of(const std::vector<double>& x, const std::vector<double>& y);
 
 // `samples` bodies of `model` (first `components` betas ~ N(0, 1), seeded) measured and
 // compared with `survey` (one table or two pooled, e.g. both sexes for the neutral model).

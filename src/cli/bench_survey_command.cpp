@@ -56,6 +56,29 @@ void print(const body::PopulationComparison& c, const std::string& against) {
     }
   }
   std::printf("largest gap of the means: %s %+.2f survey SDs\n", worst_name.c_str(), worst);
+  // The population targets: every mean within 2% of the survey's, every SD within 15%, every
+  // correlation within 0.15.
+  int means_off = 0, sds_off = 0;
+  for (const auto& r : c.rows) {
+    if (!(std::abs(r.model.mean / r.survey.mean - 1.0) <= 0.02)) ++means_off;
+    if (!(std::abs(r.model.sd / r.survey.sd - 1.0) <= 0.15)) ++sds_off;
+  }
+  int correlations_off = 0;
+  for (const auto& g : c.correlations) {
+    if (!(std::abs(g.model - g.survey) <= 0.15)) ++correlations_off;
+  }
+  std::printf(
+      "means within 2%%: %zu of %zu; SDs within 15%%: %zu of %zu; correlations within "
+      "0.15: %zu of %zu\n",
+      c.rows.size() - static_cast<std::size_t>(means_off), c.rows.size(),
+      c.rows.size() - static_cast<std::size_t>(sds_off), c.rows.size(),
+      c.correlations.size() - static_cast<std::size_t>(correlations_off), c.correlations.size());
+  std::printf("largest correlation gaps (survey -> model):");
+  for (std::size_t i = 0; i < c.correlations.size() && i < 5; ++i) {
+    const auto& g = c.correlations[i];
+    std::printf("%s %s-%s %.2f -> %.2f", i ? "," : "", g.a.c_str(), g.b.c_str(), g.survey, g.model);
+  }
+  std::printf("\n");
 }
 
 int run(int argc, char** argv) {

@@ -173,4 +173,22 @@ printf '%s\n%s\n%s\n' "$cols" "$row" "1700,700,950,850,1020,370,800,320,250,340,
 out=$("$exe" bench-survey --female "$dir/two.csv" --samples 5 2>&1) || fail "bench-survey: $out"
 expect "$out" "model female \(5 bodies\) against ANSUR II women, two.csv \(2 people\)"
 expect "$out" "height +167.5"
+expect "$out" "correlations within 0.15: [0-9]+ of [0-9]+"
+
+echo "== fit-survey fits surveyed people and writes its table, or says what is wrong"
+refuse "fit-survey needs --model and --csv" "$exe" fit-survey --model female
+refuse "nosuch.csv: no such file" "$exe" fit-survey --model female --csv "$dir/nosuch.csv"
+refuse "the sample of 3 is larger than the survey's 2 people" \
+  "$exe" fit-survey --model female --csv "$dir/two.csv" --sample 3
+refuse "cannot fit \"foo\"; the measurements are: height, mass" \
+  "$exe" fit-survey --model female --csv "$dir/two.csv" --sample 1 --measurements foo
+refuse "--out needs a file name" "$exe" fit-survey --model female --csv "$dir/two.csv" --out ""
+out=$("$exe" fit-survey --model female --csv "$dir/two.csv" --sample 2 --threads 2 \
+  --measurements height,mass,hips --out "$dir/fit.csv" 2>&1) || fail "fit-survey: $out"
+expect "$out" "model female \(10 components\) against 2 people of two.csv"
+expect "$out" "height +cm"
+head -1 "$dir/fit.csv" | grep -qx "measurement,unit,median_abs_error,p95_abs_error" ||
+  fail "fit.csv header: $(head -1 "$dir/fit.csv")"
+[ "$(wc -l <"$dir/fit.csv")" -eq 4 ] || fail "fit.csv: $(cat "$dir/fit.csv")"
+grep -q "^mass,kg," "$dir/fit.csv" || fail "fit.csv has no mass row: $(cat "$dir/fit.csv")"
 echo "body_cli: all checks passed"

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "body/model_loader.hpp"
 #include "body/survey_comparison.hpp"
@@ -102,4 +103,27 @@ TEST_CASE("a model's population is compared with the survey measure by measure",
   CHECK(c.rows[9].name == "neck");
   CHECK(c.rows[9].survey.mean == Approx(0.41));
   CHECK(c.rows[9].model.mean > 0.3);
+  // Two people: every survey correlation is +-1 or undefined; the model's are computed over its
+  // 20 bodies, and height with mass is strongly positive.
+  REQUIRE_FALSE(c.correlations.empty());
+  for (const auto& g : c.correlations) CHECK(g.a != g.b);
+  bool height_mass = false;
+  for (const auto& g : c.correlations) {
+    if (g.a == "height" && g.b == "mass") {
+      height_mass = true;
+      CHECK(g.model > 0.3);
+    }
+  }
+  CHECK(height_mass);
+}
+
+TEST_CASE("Pearson's correlation of two series", "[survey]") {
+  CHECK(body::correlation_of({1, 2, 3, 4}, {2, 4, 6, 8}) == Approx(1.0));
+  CHECK(body::correlation_of({1, 2, 3, 4}, {8, 6, 4, 2}) == Approx(-1.0));
+  CHECK(body::correlation_of({1, 2, 3, 4}, {1, 3, 2, 4}) == Approx(0.8));
+  CHECK(std::isnan(body::correlation_of({1, 2}, {1, 2})));
+  CHECK(std::isnan(body::correlation_of({1, 1, 1}, {1, 2, 3})));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(body::correlation_of({1, 2, nan, 3, 4}, {2, 4, 5, 6, 8}) == Approx(1.0));
+  CHECK_THROWS(body::correlation_of({1, 2, 3}, {1, 2}));
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -19,6 +20,9 @@
 #include "body/body_model.hpp"
 #include "body/model_loader.hpp"
 #include "body/npz_reader.hpp"
+#include "body/survey_comparison.hpp"
+#include "body/survey_fit.hpp"
+#include "default_model/population.hpp"
 #endif
 
 using default_model::GeneratedModel;
@@ -59,6 +63,17 @@ mc::Points shape(const GeneratedModel& m, const Eigen::VectorXf& betas) {
   return p;
 }
 
+// `count` uniform random points of [-3, 3]^10 (seeded, the same on every platform).
+void add_uniform_betas(std::vector<Eigen::VectorXf>& out, int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < count; ++i) {
+    Eigen::VectorXf b(10);
+    for (int k = 0; k < 10; ++k)
+      b[k] = float(-3.0 + 6.0 * double(rng() >> 11) / 9007199254740992.0);
+    out.push_back(b);
+  }
+}
+
 // The betas the plausibility test covers: each of the first 10 components at -3 and +3, and
 // 30 uniform random points of [-3, 3]^10 (fixed seed).
 std::vector<Eigen::VectorXf> test_betas() {
@@ -69,13 +84,7 @@ std::vector<Eigen::VectorXf> test_betas() {
       b[k] = s;
       out.push_back(b);
     }
-  std::mt19937_64 rng(12345);
-  for (int i = 0; i < 30; ++i) {
-    Eigen::VectorXf b(10);
-    for (int k = 0; k < 10; ++k)
-      b[k] = float(-3.0 + 6.0 * double(rng() >> 11) / 9007199254740992.0);
-    out.push_back(b);
-  }
+  add_uniform_betas(out, 30, 12345);
   return out;
 }
 
@@ -356,13 +365,7 @@ TEST_CASE("no male body shows breasts, and the female model's breasts span a ran
   // Each of the first 10 components at -3 and +3, and 500 uniform points of the [-3, 3]^10 box.
   std::vector<Eigen::VectorXf> betas = test_betas();
   betas.resize(20);
-  std::mt19937_64 rng(2024);
-  for (int i = 0; i < 500; ++i) {
-    Eigen::VectorXf b(10);
-    for (int k = 0; k < 10; ++k)
-      b[k] = float(-3.0 + 6.0 * double(rng() >> 11) / 9007199254740992.0);
-    betas.push_back(b);
-  }
+  add_uniform_betas(betas, 500, 2024);
   // The fold is looked for within 4% of the stature (7 cm) below each level of the chest.
   constexpr double kWindow = 0.04;
   auto projections = [&](const std::string& name) {
@@ -396,6 +399,50 @@ TEST_CASE("no male body shows breasts, and the female model's breasts span a ran
 }
 
 #ifdef SG_HAVE_BODY_LIBRARY
+// fit-survey's check on people drawn from the committed survey statistics (the survey's rows
+// are never committed): the measures the generator draws that the tool measures the same way.
+TEST_CASE("people drawn from the survey statistics are near bodies of their sex's model",
+          "[model][fit]") {
+  const std::vector<std::string> names = {"height", "mass",  "chest", "waist", "hips",
+                                          "neck",   "thigh", "calf",  "inseam"};
+  for (const bool female : {true, false}) {
+    using namespace default_model;
+    const std::vector<Anthropometry> people = sample_population(female, 24, 77);
+    // A survey table in the survey's own units (mm; weightkg in tenths of a kg).
+    body::SurveyTable table;
+    table.source = female ? "drawn-women" : "drawn-men";
+    table.columns = body::survey_columns();
+    table.values =
+        Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(people.size()),
+                                  static_cast<Eigen::Index>(table.columns.size()), std::nan(""));
+    const std::vector<std::pair<std::string, std::pair<int, double>>> columns = {
+        {"stature", {k_stature, 10.0}},
+        {"weightkg", {k_weight, 10.0}},
+        {"chestcircumference", {k_chest_circ, 10.0}},
+        {"waistcircumference", {k_waist_circ, 10.0}},
+        {"buttockcircumference", {k_buttock_circ, 10.0}},
+        {"neckcircumference", {k_neck_circ, 10.0}},
+        {"thighcircumference", {k_thigh_circ, 10.0}},
+        {"calfcircumference", {k_calf_circ, 10.0}},
+        {"crotchheight", {k_crotch_height, 10.0}}};
+    for (std::size_t p = 0; p < people.size(); ++p)
+      for (const auto& [column, source] : columns)
+        table.values(static_cast<Eigen::Index>(p), table.column(column)) =
+            source.second * people[p].m[static_cast<std::size_t>(source.first)];
+    const std::string name = female ? "female" : "male";
+    const auto model = std::make_shared<const body::Model>(body::load_model(asset_path(name), 0));
+    const body::SurveyFit fit = body::fit_survey(model, {&table}, 24, 5, 2, names);
+    for (const auto& r : fit.rows) {
+      std::printf("%s: %-7s median %.2f %s, p95 %.2f\n", name.c_str(), r.name.c_str(),
+                  r.median_abs_error, r.unit.c_str(), r.p95_abs_error);
+      INFO(name << " " << r.name);
+      // A guard against the space losing real people, not the issue's goal (1 cm median): on
+      // this build the medians are 0.3-2.9 cm and 1.2-1.8 kg.
+      CHECK(r.median_abs_error <= 3.5);
+    }
+  }
+}
+
 TEST_CASE("the committed assets load through body::load_model like an SMPL file", "[model]") {
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);

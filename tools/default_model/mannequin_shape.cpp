@@ -255,17 +255,31 @@ Mannequin::Mannequin() {
     head_cuts_.push_back(
         {ellipsoid(Vec3(sx * 0.031, 1.599, 0.101), Y, X, 0.013, 0.016, 0.012), 0.008});
     // Eyes: an eyeball in the socket, the upper lid over its top and the lower lid under it,
-    // leaving an almond of eyeball between them.
-    const Vec3 eye(sx * 0.031, 1.5985, 0.0845);
-    head_details_.push_back({ellipsoid(eye, Y, X, 0.0122, 0.0122, 0.0122), 0.003});
+    // leaving an open almond of eyeball between them (about 6 mm high at its middle; an
+    // adult's palpebral fissure is 8-10 mm; lids that meet read as closed eyes).
+    const Vec3 eye(sx * 0.031, 1.5985, 0.0848);
+    // The lids meet the eyeball in a crease (small blend radii): blended smoothly, lids and
+    // eyeball read as one closed bulge.
+    head_details_.push_back({ellipsoid(eye, Y, X, 0.0122, 0.0122, 0.0122), 0.0015});
     head_details_.push_back(
-        {ellipsoid(eye + Vec3(0, 0.0088, 0.0002), Y, X, 0.0098, 0.0126, 0.0128), 0.004});
+        {ellipsoid(eye + Vec3(0, 0.0116, 0.0002), Y, X, 0.0094, 0.0128, 0.0130), 0.0012});
     head_details_.push_back(
-        {ellipsoid(eye + Vec3(0, -0.0086, 0.0), Y, X, 0.0076, 0.0124, 0.0125), 0.004});
+        {ellipsoid(eye + Vec3(0, -0.0112, 0.0), Y, X, 0.0072, 0.0124, 0.0127), 0.0012});
+    // Brows: a low ridge arching over each eye, fullest towards the nose.
+    head_details_.push_back(
+        {capsule(Vec3(sx * 0.014, 1.6165, 0.0975), Vec3(sx * 0.050, 1.6155, 0.0865), Y, 0.0042,
+                 0.0045, 0.0032, 0.0035, 0.004, 0.004),
+         0.004});
   }
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(
         {ellipsoid(Vec3(sx * 0.076, 1.588, -0.005), Y, X, 0.03, 0.012, 0.02), 0.012});
+    // The ear's bowl (concha) hollowed out of its outer face, leaving the rim (helix) round
+    // it; and the nostrils under the tip of the nose.
+    head_cuts_.push_back(
+        {ellipsoid(Vec3(sx * 0.0875, 1.584, -0.001), Y, X, 0.016, 0.0055, 0.0095), 0.003});
+    head_cuts_.push_back(
+        {ellipsoid(Vec3(sx * 0.0072, 1.5555, 0.1085), Y, X, 0.0026, 0.0036, 0.0042), 0.0015});
   }
 
   std::tie(head_centre_, head_radius_) = bounding_sphere(head_parts_, 0);
@@ -548,6 +562,10 @@ double Mannequin::target_edge(const Vec3& p) const {
   L = std::min(L, 0.0075 + 0.0035 * smoothstep(0.035, 0.07, (p - Vec3(0, 1.56, 0.095)).norm()));
   for (const Vec3& c : {Vec3(0.031, 1.5985, 0.095), Vec3(-0.031, 1.5985, 0.095)})
     L = std::min(L, 0.003 + 0.0145 * smoothstep(0.014, 0.026, (p - c).norm()));
+  // Nostrils, and the ears' bowls.
+  L = std::min(L, 0.0025 + 0.015 * smoothstep(0.012, 0.02, (p - Vec3(0, 1.556, 0.108)).norm()));
+  for (const Vec3& c : {Vec3(0.085, 1.585, -0.003), Vec3(-0.085, 1.585, -0.003)})
+    L = std::min(L, 0.004 + 0.0135 * smoothstep(0.02, 0.035, (p - c).norm()));
   L = std::min(
       L,
       0.003 + 0.0145 *

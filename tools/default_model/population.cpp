@@ -143,6 +143,7 @@ enum Field : int {
   kShouldersForward,
   kKneeAlignment,
   kLimbFat,
+  kThighTop,
   kFieldCount
 };
 constexpr int kAnchor = 0;
@@ -161,9 +162,13 @@ constexpr double kLayerCap = 0.11;
 // Per-sex calibration of the cross sections (see DeformationModel::parameters).
 struct Calibration {
   double pelvis, waist, chest, neck, thigh, calf, biceps;
+  // Metres of soft tissue added round the top of the thighs (kThighTop): the thigh's scale
+  // acts along the whole femur, and raised far enough to give the survey's thigh girth (taken
+  // just below the buttock's fold) it bulged the lower thigh into a ring above the knee.
+  double thigh_top;
 };
-constexpr Calibration kFemaleCalibration{0.96, 1.45, 0.80, 0.80, 1.25, 1.24, 1.12};
-constexpr Calibration kMaleCalibration{0.95, 1.28, 1.04, 0.87, 1.28, 1.12, 1.10};
+constexpr Calibration kFemaleCalibration{0.96, 1.45, 0.80, 0.80, 1.25, 1.24, 1.12, 0.005};
+constexpr Calibration kMaleCalibration{0.95, 1.28, 1.04, 0.87, 1.28, 1.12, 1.10, 0.018};
 
 double gauss(double x, double centre, double sd) {
   const double t = (x - centre) / sd;
@@ -328,6 +333,9 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
                            0.6 * (w(kLeftKnee) + w(kRightKnee));
       set_field(kLimbFat, above_feet * (limbs - 0.4 * torso * (1.0 - limbs)) * radial);
     }
+    // The top of the thighs, fading out towards the knees and into the buttocks and crotch.
+    // (Below the crotch only legs and hands are at these heights; the hands are left out.)
+    set_field(kThighTop, (1.0 - arm) * crotch_core * gauss(p.y(), 0.78, 0.045) * n);
     basis_(3 * i + 1, kShift) = 1.0;
     if (p.y() < 0.03) sole_vertices_.push_back(i);
   }
@@ -472,6 +480,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   t[kFields + kShouldersForward] = 0.0115 * f.shoulders_forward;
   t[kFields + kLimbFat] = 0.006 * f.limb_fat;
   t[kFields + kKneeAlignment] = 0.0105 * f.knee_alignment;
+  t[kFields + kThighTop] = cal.thigh_top;
   // Soles on y = 0.
   double lowest = 1e9;
   for (int i : sole_vertices_) lowest = std::min(lowest, basis_.row(3 * i + 1).dot(t));
