@@ -67,19 +67,22 @@ for variant in sps sps-mean-centre sps-plain sps-random sls; do
 done
 new_doc=$(mktemp)
 /usr/bin/python3 tools/sps_benchmark_report.py "$OUT" "$REFERENCE_DIR" "$TRIALS" "$BODY_TRIALS" > "$new_doc"
-# The holds section belongs to tools/holds_benchmark.sh: carried over as it is.
+# The holds section belongs to tools/holds_benchmark.sh, the pixel-person one to
+# tools/pixel_person_benchmark.sh: carried over as they are.
 /usr/bin/python3 - docs/benchmarks.md "$new_doc" <<'PY'
 import sys
 old_path, new_path = sys.argv[1], sys.argv[2]
-begin, end = "<!-- holds-begin", "<!-- holds-end -->"
 try:
     old = open(old_path).read()
 except FileNotFoundError:
     old = ""
 new = open(new_path).read()
-if begin in old and end in old and begin not in new:
-    block = old[old.index(begin):old.index(end) + len(end)]
-    new = new.rstrip("\n") + "\n\n" + block + "\n"
+# The sections other scripts write are carried over as they are.
+for name in ("holds", "pixel"):
+    begin, end = "<!-- %s-begin" % name, "<!-- %s-end -->" % name
+    if begin in old and end in old and begin not in new:
+        block = old[old.index(begin):old.index(end) + len(end)]
+        new = new.rstrip("\n") + "\n\n" + block + "\n"
 open(new_path, "w").write(new)
 PY
 mv "$new_doc" docs/benchmarks.md

@@ -123,6 +123,13 @@ class DesignSpace {
   // both on every session, exactly as `simulate --function body` does. Empty: no such
   // measure (the session then zooms by the paper's fixed factor).
   virtual PairwiseDistance perceptual_distance() const { return {}; }
+  // How the zoom adapts with perceptual_distance() when the cells are `cell_px` pixels high
+  // (0: not known yet): the threshold under which two cells look alike follows from what a
+  // pixel shows.
+  virtual ZoomPolicy zoom_policy(int cell_px) const {
+    (void)cell_px;
+    return {};
+  }
   virtual Eigen::VectorXd perceptual_scale() const { return {}; }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.

@@ -223,7 +223,8 @@ void GalleryController::save_now() {
 void GalleryController::apply(const Intent& i) {
   // While the resume question is open, only its answers count.
   if (pending_resume_ && !std::holds_alternative<intent::Resume>(i) &&
-      !std::holds_alternative<intent::StartNew>(i)) {
+      !std::holds_alternative<intent::StartNew>(i) &&
+      !std::holds_alternative<intent::SetCellPixels>(i)) {
     return;
   }
   std::visit(
@@ -237,6 +238,11 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::UsePoint& u) { use_point(u.x, "the slider values", true); },
           [&](const intent::SetHolds& h) { set_holds(h.holds); },
           [&](const intent::GoToTargets& t) { go_to_targets(t.targets); },
+          [&](const intent::SetCellPixels& p) {
+            if (p.pixels == cell_pixels_ || p.pixels < 1) return;
+            cell_pixels_ = p.pixels;
+            session_->set_zoom_policy(space_->zoom_policy(cell_pixels_));
+          },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
                              ? n.history_index
@@ -520,7 +526,8 @@ void GalleryController::install_perception() {
     const sps::Population population = space_->population();
     if (population.mean.size() == search.dims) session_->set_population(population);
   }
-  session_->set_perceptual_distance(space_->perceptual_distance());
+  session_->set_perceptual_distance(space_->perceptual_distance(),
+                                    space_->zoom_policy(cell_pixels_));
 }
 
 void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> space) {

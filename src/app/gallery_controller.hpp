@@ -91,12 +91,17 @@ struct SetHolds {
 struct GoToTargets {
   std::vector<std::string> targets;
 };
+// The view's cells are now this many pixels high: the look-alike threshold of the zoom
+// levels still to come follows (DesignSpace::zoom_policy).
+struct SetCellPixels {
+  int pixels = 0;
+};
 }  // namespace intent
 
-using Intent =
-    std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
-                 intent::StartOver, intent::Open, intent::Resume, intent::StartNew, intent::Export,
-                 intent::Inspect, intent::UsePoint, intent::SetHolds, intent::GoToTargets>;
+using Intent = std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
+                            intent::StartOver, intent::Open, intent::Resume, intent::StartNew,
+                            intent::Export, intent::Inspect, intent::UsePoint, intent::SetHolds,
+                            intent::GoToTargets, intent::SetCellPixels>;
 
 enum class MessageKind { kInfo, kSuccess, kError };
 struct Message {
@@ -233,6 +238,7 @@ class GalleryController {
   std::filesystem::path last_export_;
   int inspected_ = -1;
   int ignored_clicks_ = 0;
+  int cell_pixels_ = 0;  // the view's cell height; 0 until a view says
   std::vector<std::string> holds_;
   std::vector<Intent> deferred_;  // holds and targets asked for while the optimizer ran
 

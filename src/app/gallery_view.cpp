@@ -184,6 +184,11 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   dpi = std::max(1.0f, dpi);
   dpi_ = dpi;
   cell_pixels_ = static_cast<int>(std::lround(dpi * layout_.cell));
+  // What a person can tell apart depends on the size the cells are shown at.
+  if (cell_pixels_ != sent_cell_pixels_) {
+    c.queue(intent::SetCellPixels{cell_pixels_});
+    sent_cell_pixels_ = cell_pixels_;
+  }
   // Previews: two side by side in the side panel, at most 260 wide, in the space's aspect.
   const float aspect = std::max(0.2f, space.preview_aspect());
   float pw = std::min(260.0f, (layout_.side.w - 3 * kLayoutGap) / 2.0f);

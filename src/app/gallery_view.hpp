@@ -143,6 +143,7 @@ class GalleryView {
   render::Camera thumbnail_camera_;
   long thumbnail_draws_ = 0;
   int cell_pixels_ = 300;
+  int sent_cell_pixels_ = 0;  // the last size told to the controller
   int preview_w_ = 260;
   int preview_h_ = 320;
   float dpi_ = 1.0f;

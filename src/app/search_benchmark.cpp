@@ -39,14 +39,14 @@ double pinned_fraction(const Eigen::VectorXd& x, double tolerance) {
 
 PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
                             const PairwiseDistance& look_alikes, double jnd_mm,
-                            std::mt19937_64& rng) {
+                            std::mt19937_64& rng, double clone_mm) {
   PlaneOutcome out;
   const int n = session.settings().grid_size;
   while (!session.submission_pending()) {
     std::vector<Eigen::VectorXd> xs;
     for (auto& p : session.cells()) xs.push_back(std::move(p.x));
     ++out.grids;
-    if (look_alikes && has_look_alikes(look_alikes(xs))) ++out.look_alike_grids;
+    if (look_alikes && has_look_alikes(look_alikes(xs), clone_mm)) ++out.look_alike_grids;
     const int index = jnd_pick(to_target(xs), jnd_mm, rng);
     if (session.click({index % n, index / n}) == ClickResult::kIgnored) {
       throw std::logic_error("the session ignored a click inside the grid");

@@ -38,8 +38,9 @@ struct PlaneOutcome {
 // One plane: the user clicks until the session submits, the submission runs on the window's
 // worker, and the session moves on to the next plane. `look_alikes` measures the grids shown
 // (it need not be the session's own distance hook). Throws if the optimizer fails.
+// Grids count as look-alike grids when two cells differ by less than `clone_mm`.
 PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
                             const PairwiseDistance& look_alikes, double jnd_mm,
-                            std::mt19937_64& rng);
+                            std::mt19937_64& rng, double clone_mm = kCloneMm);
 
 }  // namespace app

@@ -254,7 +254,7 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
     // With holds the grid is judged first-order (decision_cells); the one taken is projected
     // (it is shown next) and must still hold no look-alikes.
     if (!shows_look_alikes(next, policy_.distinct_mm) &&
-        (!held_ || !shows_look_alikes(next, kCloneMm, true))) {
+        (!held_ || !shows_look_alikes(next, policy_.look_alike_mm, true))) {
       return next;
     }
   }
@@ -274,7 +274,7 @@ void Session::update_views() {
   }
   prepared_.reset();
   views_.assign(1, first_view(line, settings_.grid_size));
-  if (distance_ && !line && shows_look_alikes(views_.front(), kCloneMm)) {
+  if (distance_ && !line && shows_look_alikes(views_.front(), policy_.look_alike_mm)) {
     // The optimizer's plane is too small to see (e.g. it runs along directions that barely
     // change the body): widen the first grid beyond the plane's square, as long as no cell
     // leaves the box.
@@ -285,7 +285,7 @@ void Session::update_views() {
       bool clamped = false;
       for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
       if (clamped) break;
-      if (!shows_look_alikes(wider, kCloneMm)) {
+      if (!shows_look_alikes(wider, policy_.look_alike_mm)) {
         views_.front() = wider;
         break;
       }

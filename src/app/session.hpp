@@ -74,6 +74,10 @@ struct ZoomPolicy {
   // neighbours a person's pick is mostly a guess, and taken as a preference it misleads the
   // model (body benchmark, docs/benchmarks.md). 0 counts every cell.
   double compare_mm = 40.0;
+  // No grid shown may hold two cells closer than this (mm, largest vertex distance): a first
+  // grid that would is widened where the box has room, and with holds a projected grid is
+  // checked too. The window and the benchmark's pixel person set it to what the cells show.
+  double look_alike_mm = kCloneMm;
 };
 
 // The submission a finished plane produces for sps::PlaneSearch::submit().
@@ -110,6 +114,10 @@ class Session {
   // Installs (or, with an empty function, removes) the perceptual distance between cells.
   // Recomputes the zoom levels of the current plane. Not saved with the session.
   void set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy = {});
+  // A new policy for the zoom levels still to come (the window's cells changed size): the
+  // grid on screen stays as it is.
+  void set_zoom_policy(const ZoomPolicy& policy) { policy_ = policy; }
+  const ZoomPolicy& zoom_policy() const { return policy_; }
   bool has_perceptual_distance() const { return static_cast<bool>(distance_); }
   // How much each search coordinate changes the body over its range (mm, e.g.
   // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and

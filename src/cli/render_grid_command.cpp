@@ -84,7 +84,7 @@ int run(int argc, char** argv) {
     session.set_perceptual_scale(scale);
     session.set_population(space->population());
   }
-  session.set_perceptual_distance(space->perceptual_distance());
+  session.set_perceptual_distance(space->perceptual_distance(), space->zoom_policy(cell));
   if (const auto targets = args.get_all("target"); !targets.empty()) {
     app::TargetSolve solved;
     try {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/cell_visibility.hpp"
 #include "app/search_benchmark.hpp"
 #include "app/session.hpp"
 #include "body/measurements.hpp"
@@ -111,6 +112,8 @@ int run_body_simulation(const ArgParser& args) {
                               "target-betas",
                               "user",
                               "jnd-mm",
+                              "jnd-px",
+                              "cell-px",
                               "trials",
                               "iterations",
                               "seed",
@@ -135,7 +138,20 @@ int run_body_simulation(const ArgParser& args) {
   args.reject_unknown(known);
   const std::string user = args.get_or("user", "zoom-jnd");
   if (user != "zoom-jnd") throw ArgError("--function body: the user is zoom-jnd (--user zoom-jnd)");
-  const double jnd_mm = args.get_double("jnd-mm", 5.0);
+  // The pixel person: cannot tell apart cells whose distances to the target differ by less
+  // than what D pixels show in a cell of N pixels, and the session and the look-alike count
+  // use the same threshold, as the window does at that cell size.
+  const bool pixel_person = args.has("jnd-px");
+  const int cell_px = args.get_int("cell-px", app::kDefaultCellPx);
+  const double jnd_px = args.get_double("jnd-px", app::kDefaultJndPx);
+  if (cell_px < 16 || cell_px > 8192) throw ArgError("--cell-px must be in [16, 8192]");
+  if (!(jnd_px >= 0.0 && jnd_px <= 100.0)) throw ArgError("--jnd-px must be in [0, 100]");
+  if (pixel_person && args.has("jnd-mm")) {
+    throw ArgError("--jnd-px and --jnd-mm: give one (the person's threshold in pixels or in mm)");
+  }
+  const double pixel_mm = app::look_alike_mm(cell_px, jnd_px);
+  const double jnd_mm = pixel_person ? pixel_mm : args.get_double("jnd-mm", 5.0);
+  const double clone_mm = pixel_person ? pixel_mm : app::kCloneMm;
   const int trials = args.get_int("trials", 10);
   const int iterations = args.get_int("iterations", 15);
   const int seed = args.get_int("seed", 1000);
@@ -146,6 +162,10 @@ int run_body_simulation(const ArgParser& args) {
   const bool adapt = !args.has("no-adapt");
   const bool perceptual_scale = !args.has("no-perceptual-scale");
   app::ZoomPolicy policy;
+  if (pixel_person) {
+    policy.distinct_mm = std::max(app::kCloneMm, pixel_mm);
+    policy.look_alike_mm = policy.distinct_mm;
+  }
   policy.distinct_mm = args.get_double("distinct-mm", policy.distinct_mm);
   if (!(jnd_mm >= 0.0 && jnd_mm < 1e4)) throw ArgError("--jnd-mm must be in [0, 10000)");
   if (!(policy.distinct_mm >= 0.0 && policy.distinct_mm < 1e4)) {
@@ -158,6 +178,9 @@ int run_body_simulation(const ArgParser& args) {
   const std::string target_mode = args.get_or("target", "random");
   if (target_mode != "random") throw ArgError("--target: use random, or give --target-betas");
   sps::SearchOptions options = read_search_options(args);
+  // A plane shorter than what the pixel person sees would show look-alike cells however the
+  // first grid is widened: its sides are at least the threshold long.
+  if (pixel_person) options.min_plane_length = std::max(options.min_plane_length, pixel_mm);
   options.min_plane_length = args.get_double("min-plane-mm", options.min_plane_length);
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
     throw ArgError("--min-plane-mm must be in [0, 10000)");
@@ -250,7 +273,7 @@ int run_body_simulation(const ArgParser& args) {
     double best = std::numeric_limits<double>::infinity();
     for (int it = 0; it < iterations; ++it) {
       const app::PlaneOutcome plane =
-          app::play_plane_jnd(session, to_target, pairwise, jnd_mm, user_rng);
+          app::play_plane_jnd(session, to_target, pairwise, jnd_mm, user_rng, clone_mm);
       best = std::min(best, to_target({plane.chosen}).front());
       const auto i = static_cast<std::size_t>(it);
       results.gaps[i].push_back(best);
@@ -273,7 +296,12 @@ int run_body_simulation(const ArgParser& args) {
   std::ostringstream title;
   title << "# " << sps::method_name(options.method) << " on body (" << model.name << ", " << k
         << " components), user zoom-jnd (" << grid << "x" << grid << ", " << levels
-        << " levels, JND " << jnd_mm << " mm" << (adapt ? "" : ", no zoom adaptation")
+        << " levels, JND " << jnd_mm << " mm";
+  if (pixel_person) {
+    title << " = " << jnd_px << " px in a " << cell_px << " px cell; look-alikes under " << clone_mm
+          << " mm";
+  }
+  title << (adapt ? "" : ", no zoom adaptation")
         << (perceptual_scale ? "" : ", no perceptual scale")
         << (perceptual_scale && !target_model ? ", no target model" : "") << "), target "
         << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "app/cell_visibility.hpp"
 #include "body/gltf_export.hpp"
 #include "body/measurement_solve.hpp"
 #include "body/measurements.hpp"
@@ -102,6 +103,17 @@ app::PairwiseDistance BodySpace::perceptual_distance() const {
   return [distance = distance_](const std::vector<Eigen::VectorXd>& xs) {
     return distance->pairwise_max_mm(xs);
   };
+}
+
+app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
+  app::ZoomPolicy policy;
+  // Neighbouring cells must differ by what the person can see in a cell of this size (at the
+  // default window's 210 px, 2 px are 20 mm); never less than the look-alike floor.
+  if (cell_px > 0) {
+    policy.distinct_mm = std::max(app::kCloneMm, app::look_alike_mm(cell_px));
+    policy.look_alike_mm = policy.distinct_mm;
+  }
+  return policy;
 }
 
 Eigen::VectorXd BodySpace::perceptual_scale() const {

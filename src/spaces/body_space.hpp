@@ -64,6 +64,7 @@ class BodySpace : public app::DesignSpace {
                                  const std::vector<std::string>& held = {}) const override;
 
   app::PairwiseDistance perceptual_distance() const override;
+  app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   sps::Population population() const override;
 

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -14,6 +15,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/cell_visibility.hpp"
 #include "app/gallery_app.hpp"
 #include "app/gallery_controller.hpp"
 #include "app/gallery_layout.hpp"
@@ -1443,4 +1445,59 @@ TEST_CASE("typed targets and the panel's units survive a relaunch", "[gallery][g
   const app::UiPrefs junk = app::load_ui_prefs(path);
   CHECK(junk.typed_targets.size() == 1);
   CHECK(junk.typed_targets.count("hips") == 1);
+}
+
+TEST_CASE("the look-alike threshold follows the cells' size on screen", "[gallery][zoom]") {
+  TempDir dir;
+  GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
+  // No view has said how big its cells are: the session's default.
+  CHECK(c.session().zoom_policy().distinct_mm == Approx(app::ZoomPolicy{}.distinct_mm));
+  // The default window's cells: 2 px of a 2.14 m frame over 210 px are about 20 mm.
+  c.queue(intent::SetCellPixels{app::kDefaultCellPx});
+  c.begin_frame(1.0);
+  const double at_default = c.session().zoom_policy().distinct_mm;
+  CHECK(at_default == Approx(app::look_alike_mm(app::kDefaultCellPx)));
+  CHECK(at_default == Approx(20.4).margin(0.2));
+  // Every grid of a plane clicked through at that size shows nine cells that differ by at
+  // least that much, pairwise (or the plane ends early, the click being the choice).
+  const auto distance = c.space().perceptual_distance();
+  REQUIRE(distance);
+  double t = 2.0;
+  int zoomed_grids = 0;
+  double first_closest = 0.0;
+  for (int click = 0; click < 2 * c.session().settings().zoom_levels; ++click) {
+    if (c.session().planes_done() > 0) break;  // the first plane was submitted
+    {
+      // Every grid of the first plane, its first (widened where the box has room) included.
+      std::vector<Eigen::VectorXd> xs;
+      for (const auto& p : c.session().cells()) xs.push_back(p.x);
+      const Eigen::MatrixXd d = distance(xs);
+      double closest = 1e9;
+      for (Eigen::Index i = 0; i < d.rows(); ++i)
+        for (Eigen::Index j = i + 1; j < d.cols(); ++j) closest = std::min(closest, d(i, j));
+      INFO("zoom level " << c.session().path().size() << ": closest pair " << closest << " mm");
+      // The first grid can only be widened as far as the box allows.
+      if (!c.session().path().empty()) CHECK(closest >= at_default - 1e-6);
+      if (c.session().path().empty()) first_closest = closest;
+      ++zoomed_grids;
+    }
+    c.queue(intent::ClickCell{1, 1});
+    c.begin_frame(t);
+    t += 5.0;
+    c.begin_frame(t);
+    c.wait_for_optimizer(t);
+  }
+  std::printf(
+      "at %d px cells: threshold %.1f mm, %d grids checked, the first's closest pair "
+      "%.1f mm\n",
+      app::kDefaultCellPx, at_default, zoomed_grids, first_closest);
+  CHECK(c.session().zoom_policy().look_alike_mm == Approx(at_default));
+  // Big cells show more: a 1000 px cell resolves 4.3 mm, never below the look-alike floor.
+  c.queue(intent::SetCellPixels{1000});
+  c.begin_frame(t += 1.0);
+  CHECK(c.session().zoom_policy().distinct_mm == Approx(app::kCloneMm));
+  // A new search keeps the cells' size.
+  c.queue(intent::StartOver{});
+  c.begin_frame(t += 1.0);
+  CHECK(c.session().zoom_policy().distinct_mm == Approx(app::kCloneMm));
 }

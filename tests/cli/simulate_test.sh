@@ -84,8 +84,16 @@ for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2
             "--function body --jnd-mm -1" "--function body --target-betas 1 2 3 4 5 6 7 8 9 10 11" \
             "--function body --model /nonexistent.npz" "--function body --grid 7" \
             "--function body --hold weight" "--function body --zoom-factors 0" \
+            "--function body --jnd-px 2 --jnd-mm 5" "--function body --jnd-px 2 --cell-px 4" \
+            "--function body --jnd-px -1" \
             "--function body --zoom-factors 0.7,1.5" "--function body --zoom-factors x"; do
   if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
   grep -qi "error" <<<"$err" || fail "no error message for: $args"
 done
+# The pixel person: 2 px of a 210 px cell are 20.4 mm, for the person, the session and the
+# look-alike count alike.
+out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --quiet \
+      --jnd-px 2 --cell-px 210)
+grep -qE "JND 20\.4[0-9]* mm = 2 px in a 210 px cell; look-alikes under 20\.4" <<<"$out" ||
+  fail "pixel person title: $out"
 echo "ok"

@@ -1,10 +1,12 @@
 // Renderer tests on a headless EGL context with a stand-in mesh (no body model needed).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "app/cell_visibility.hpp"
 #include "render/body_renderer.hpp"
 #include "render/camera.hpp"
 #include "render/cell_framebuffer.hpp"
@@ -170,4 +172,12 @@ TEST_CASE("png writer reports an unwritable path", "[render]") {
   CHECK_THROWS_WITH(render::write_png(dir / "missing" / "x.png", 4, 4, px),
                     Catch::Contains("missing"));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("the body cells' frame height the look-alike threshold assumes is the camera's",
+          "[render][camera]") {
+  const render::Camera camera;
+  const double frame =
+      2.0 * camera.distance * std::tan(0.5 * camera.fov_y_degrees * 3.14159265358979323846 / 180.0);
+  CHECK(frame == Approx(app::kCellFrameHeightM).epsilon(1e-6));
 }

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The grid of each zoom level of the first plane in the real window at 1280x720 (Xvfb,
+# xdotool), clicking the centre cell each time: docs/screenshot-zoom-levels.png, the four
+# grids side by side as the window shows them (cells about 210 px), to judge whether a person
+# can tell every cell apart at each level.
+#   bash tools/make_zoom_screenshots.sh [BUILD_DIR] [OUT.png] [extra gallery options...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+APP=${1:-build}/sequential-gallery
+OUT=${2:-docs/screenshot-zoom-levels.png}
+shift 2 2>/dev/null || shift $#
+[[ -x "$APP" ]] || { echo "make_zoom_screenshots: $APP not built (bash tools/build.sh)"; exit 1; }
+if [[ -z "${DISPLAY:-}" ]]; then
+  exec xvfb-run -a -s "-screen 0 1280x720x24" bash "$0" "$(dirname "$APP")" "$OUT" "$@"
+fi
+T=$(mktemp -d)
+trap 'kill $PID 2>/dev/null || true; rm -rf "$T"' EXIT
+XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
+  --zoom-seconds 0.4 --report-layout --screenshot "$T/shot.png" "$@" >"$T/log" 2>&1 &
+PID=$!
+for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
+WIN=$(xdotool search --sync --name '^Sequential Gallery$')
+WIN=${WIN%%$'\n'*}
+sleep 1
+centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
+# The grid's extent: from cell 1's corner to cell 9's far corner.
+read -r x0 y0 < <(awk '$1 == "[layout]" && $2 == "cell" && $3 == 1 { print $4, $5 }' "$T/log" | tail -1)
+read -r x1 y1 < <(awk '$1 == "[layout]" && $2 == "cell" && $3 == 9 { print $4 + $6, $5 + $6 }' "$T/log" | tail -1)
+shots=()
+for level in 1 2 3 4; do
+  rm -f "$T/shot.png"
+  xdotool mousemove --sync --window "$WIN" 1270 700  # no cell hovered
+  sleep 0.5
+  xdotool key F12
+  for _ in $(seq 100); do [[ -s "$T/shot.png" ]] && break; sleep 0.1; done
+  sleep 0.3
+  convert "$T/shot.png" -crop "$((x1 - x0))x$((y1 - y0))+$x0+$y0" +repage "$T/level$level.png"
+  shots+=(-label "zoom level $level" "$T/level$level.png")
+  [[ $level -lt 4 ]] && { xdotool mousemove --sync --window "$WIN" $(centre 5) click 1; sleep 1.5; }
+done
+montage "${shots[@]}" -tile 4x1 -geometry +6+6 -pointsize 16 -background white "$OUT"
+echo "wrote $OUT"
