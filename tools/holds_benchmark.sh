@@ -20,9 +20,11 @@ start=$(date +%s)
 mid=$(date +%s)
 "$APP" "${common[@]}" --hold height --csv "$OUT/holds_height.csv" 2>"$LOG" >/dev/null
 end=$(date +%s)
-/usr/bin/python3 - "$ROOT/docs/benchmarks.md" "$OUT" "$TRIALS" "$PLANES" $((mid - start)) $((end - mid)) \
+PYTHONDONTWRITEBYTECODE=1 DOC_TOOLS="$ROOT/tools" /usr/bin/python3 - "$ROOT/docs/benchmarks.md" "$OUT" "$TRIALS" "$PLANES" $((mid - start)) $((end - mid)) \
   "$(cat "$LOG")" <<'PYEOF'
-import csv, sys
+import csv, os, sys
+sys.path.insert(0, os.environ["DOC_TOOLS"])
+from doc_section import write_section
 doc, out, trials, planes, t_free, t_hold, clock = sys.argv[1:8]
 free = list(csv.DictReader(open(f"{out}/holds_free.csv")))
 held = list(csv.DictReader(open(f"{out}/holds_height.csv")))
@@ -52,14 +54,6 @@ for f, h in zip(free, held):
                  f"{float(f['median_gap']):.2f} | {float(h['median_gap']):.2f} |")
 lines += ["", f"Wall time: {t_free} s free, {t_hold} s held (2 shared cores). Where the held time goes: "
           f"{clock.strip()}.", "<!-- holds-end -->"]
-text = open(doc).read()
-begin, end = "<!-- holds-begin", "<!-- holds-end -->"
-if begin in text:
-    a = text.index(begin)
-    b = text.index(end) + len(end)
-    text = text[:a] + "\n".join(lines) + text[b:]
-else:
-    text = text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
-open(doc, "w").write(text)
+write_section(doc, "holds", lines)
 print("\n".join(lines))
 PYEOF

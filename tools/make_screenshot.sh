@@ -16,15 +16,8 @@ if [[ -z "${DISPLAY:-}" ]]; then
 fi
 T=$(mktemp -d)
 trap 'kill $PID 2>/dev/null || true; rm -rf "$T"' EXIT
-XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
-  --zoom-seconds 0.4 --report-layout --screenshot "$T/shot.png" "$@" >"$T/log" 2>&1 &
-PID=$!
-for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
-WIN=$(xdotool search --sync --name '^Sequential Gallery$')
-WIN=${WIN%%$'\n'*} # the first window; not `| head -1`, which races with pipefail
-sleep 1
-centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
-click() { xdotool mousemove --sync --window "$WIN" $(centre "$1") click 1; sleep 1.2; }
+. tools/window_driver.sh
+start_window "$APP" "$T" "$@"
 planes() { /usr/bin/python3 -c "import json; print(len(json.load(open('$T/session.json'))['history']))" 2>/dev/null || echo 0; }
 for c in 5 3 6 2; do click "$c"; done
 for _ in $(seq 600); do [[ "$(planes)" == 1 ]] && break; sleep 0.1; done

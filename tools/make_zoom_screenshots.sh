@@ -15,14 +15,8 @@ if [[ -z "${DISPLAY:-}" ]]; then
 fi
 T=$(mktemp -d)
 trap 'kill $PID 2>/dev/null || true; rm -rf "$T"' EXIT
-XDG_STATE_HOME=$T "$APP" gallery --session "$T/session.json" --window 1280x720 \
-  --zoom-seconds 0.4 --report-layout --screenshot "$T/shot.png" "$@" >"$T/log" 2>&1 &
-PID=$!
-for _ in $(seq 300); do grep -qs '^\[layout\] cell 9 ' "$T/log" && break; sleep 0.1; done
-WIN=$(xdotool search --sync --name '^Sequential Gallery$')
-WIN=${WIN%%$'\n'*}
-sleep 1
-centre() { awk -v n="$1" '$1 == "[layout]" && $3 == n { printf "%d %d\n", $4 + $6 / 2, $5 + $6 / 2 }' "$T/log" | tail -1; }
+. tools/window_driver.sh
+start_window "$APP" "$T" "$@"
 # The grid's extent: from cell 1's corner to cell 9's far corner.
 read -r x0 y0 < <(awk '$1 == "[layout]" && $2 == "cell" && $3 == 1 { print $4, $5 }' "$T/log" | tail -1)
 read -r x1 y1 < <(awk '$1 == "[layout]" && $2 == "cell" && $3 == 9 { print $4 + $6, $5 + $6 }' "$T/log" | tail -1)
@@ -36,7 +30,7 @@ for level in 1 2 3 4; do
   sleep 0.3
   convert "$T/shot.png" -crop "$((x1 - x0))x$((y1 - y0))+$x0+$y0" +repage "$T/level$level.png"
   shots+=(-label "zoom level $level" "$T/level$level.png")
-  [[ $level -lt 4 ]] && { xdotool mousemove --sync --window "$WIN" $(centre 5) click 1; sleep 1.5; }
+  if [[ $level -lt 4 ]]; then click 5; sleep 0.3; fi
 done
 montage "${shots[@]}" -tile 4x1 -geometry +6+6 -pointsize 16 -background white "$OUT"
 echo "wrote $OUT"

@@ -24,8 +24,10 @@ for cell in 210 400; do
 done
 "$APP" "${common[@]}" --method sps --jnd-mm 0 --csv "$OUT/pixel_perfect_sps.csv" >/dev/null
 end=$(date +%s)
-/usr/bin/python3 - "$ROOT/docs/benchmarks.md" "$OUT" "$TRIALS" "$PLANES" $((end - start)) <<'PYEOF'
-import csv, sys
+PYTHONDONTWRITEBYTECODE=1 DOC_TOOLS="$ROOT/tools" /usr/bin/python3 - "$ROOT/docs/benchmarks.md" "$OUT" "$TRIALS" "$PLANES" $((end - start)) <<'PYEOF'
+import csv, os, sys
+sys.path.insert(0, os.environ["DOC_TOOLS"])
+from doc_section import write_section
 doc, out, trials, planes, seconds = sys.argv[1:6]
 def rows(name):
     return {int(r["iteration"]): r for r in csv.DictReader(open(f"{out}/{name}.csv"))}
@@ -64,14 +66,6 @@ lines.append(f"| - | sps, perfect chooser (`--jnd-mm 0`) | {float(perfect[5]['me
 lines += ["", "Share of the gap between random planes and the perfect chooser that SPS closes at "
           f"plane 10: {closed[210]:.2f} at 210 px, {closed[400]:.2f} at 400 px (the issue asks for "
           f"at least 0.5). Wall time {seconds} s (2 shared cores).", "<!-- pixel-end -->"]
-text = open(doc).read()
-begin, end = "<!-- pixel-begin", "<!-- pixel-end -->"
-if begin in text:
-    a = text.index(begin)
-    b = text.index(end) + len(end)
-    text = text[:a] + "\n".join(lines) + text[b:]
-else:
-    text = text.rstrip("\n") + "\n\n" + "\n".join(lines) + "\n"
-open(doc, "w").write(text)
+write_section(doc, "pixel", lines)
 print("\n".join(lines))
 PYEOF
