@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "app/session.hpp"
+
 namespace app {
 
 double millimetres_per_pixel(double cell_px) {
@@ -10,6 +12,13 @@ double millimetres_per_pixel(double cell_px) {
 
 double look_alike_mm(double cell_px, double jnd_px) {
   return std::max(0.0, jnd_px) * millimetres_per_pixel(cell_px);
+}
+
+ZoomPolicy zoom_policy_for_cells(double cell_px, double jnd_px) {
+  ZoomPolicy policy;
+  policy.distinct_mm = std::max(kCloneMm, look_alike_mm(cell_px, jnd_px));
+  policy.look_alike_mm = policy.distinct_mm;
+  return policy;
 }
 
 }  // namespace app

@@ -25,4 +25,6 @@ double millimetres_per_pixel(double cell_px);
 // vertex's displacement across the view.
 double look_alike_mm(double cell_px, double jnd_px = kDefaultJndPx);
 
+// zoom_policy_for_cells(), the same rule as a session's ZoomPolicy, is in app/session.hpp.
+
 }  // namespace app

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "app/cell_visibility.hpp"
 #include "app/constraint_projector.hpp"
 #include "sps/plane_search.hpp"
 #include "sps/zoom_grid.hpp"
@@ -79,6 +80,11 @@ struct ZoomPolicy {
   // checked too. The window and the benchmark's pixel person set it to what the cells show.
   double look_alike_mm = kCloneMm;
 };
+
+// The zoom policy for cells of `cell_px` pixels and a person who resolves `jnd_px`
+// (app/cell_visibility.hpp): grids whose cells differ by less than what that shows (never
+// below kCloneMm) are neither zoomed into nor, where widening helps, shown as first grids.
+ZoomPolicy zoom_policy_for_cells(double cell_px, double jnd_px = kDefaultJndPx);
 
 // The submission a finished plane produces for sps::PlaneSearch::submit().
 struct Submission {

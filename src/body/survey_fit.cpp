@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "body/measurement_solve.hpp"
 #include "body/survey_comparison.hpp"
@@ -18,19 +19,6 @@ const std::vector<std::string>& fit_measure_names() {
                                                  "thigh",  "calf", "inseam",    "arm_length"};
   return names;
 }
-
-namespace {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const double pos = p * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const auto hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
-}  // namespace
 
 SurveyFit fit_survey(const std::shared_ptr<const Model>& model,
                      const std::vector<const SurveyTable*>& survey, int sample, unsigned seed,
@@ -102,10 +90,10 @@ SurveyFit fit_survey(const std::shared_ptr<const Model>& model,
   for (std::size_t k = 0; k < names.size(); ++k) {
     std::vector<double> e;
     for (const auto& row : errors) e.push_back(row[k]);
+    const Distribution d = distribution_of(std::move(e));
     const bool mass = names[k] == "mass";
     const double scale = mass ? 1.0 : 100.0;
-    out.rows.push_back(
-        {names[k], mass ? "kg" : "cm", scale * percentile(e, 0.5), scale * percentile(e, 0.95)});
+    out.rows.push_back({names[k], mass ? "kg" : "cm", scale * d.p50, scale * d.p95});
   }
   return out;
 }

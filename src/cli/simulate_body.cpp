@@ -161,11 +161,8 @@ int run_body_simulation(const ArgParser& args) {
   const bool quiet = args.has("quiet");
   const bool adapt = !args.has("no-adapt");
   const bool perceptual_scale = !args.has("no-perceptual-scale");
-  app::ZoomPolicy policy;
-  if (pixel_person) {
-    policy.distinct_mm = std::max(app::kCloneMm, pixel_mm);
-    policy.look_alike_mm = policy.distinct_mm;
-  }
+  app::ZoomPolicy policy =
+      pixel_person ? app::zoom_policy_for_cells(cell_px, jnd_px) : app::ZoomPolicy{};
   policy.distinct_mm = args.get_double("distinct-mm", policy.distinct_mm);
   if (!(jnd_mm >= 0.0 && jnd_mm < 1e4)) throw ArgError("--jnd-mm must be in [0, 10000)");
   if (!(policy.distinct_mm >= 0.0 && policy.distinct_mm < 1e4)) {

@@ -106,14 +106,9 @@ app::PairwiseDistance BodySpace::perceptual_distance() const {
 }
 
 app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
-  app::ZoomPolicy policy;
   // Neighbouring cells must differ by what the person can see in a cell of this size (at the
-  // default window's 210 px, 2 px are 20 mm); never less than the look-alike floor.
-  if (cell_px > 0) {
-    policy.distinct_mm = std::max(app::kCloneMm, app::look_alike_mm(cell_px));
-    policy.look_alike_mm = policy.distinct_mm;
-  }
-  return policy;
+  // default window's 210 px, 2 px are 20 mm); the session's default until the size is known.
+  return cell_px > 0 ? app::zoom_policy_for_cells(cell_px) : app::ZoomPolicy{};
 }
 
 Eigen::VectorXd BodySpace::perceptual_scale() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <Eigen/Cholesky>
 
@@ -96,25 +97,22 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     z = L * z;
     for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
     IndependentFactors& f = a.f;
-    double* const factors[] = {
-        &f.fat_distribution, &f.fat_layer,         &f.muscle,         &f.bust,
-        &f.shoulder_slope,   &f.posture,           &f.lordosis,       &f.head_forward,
-        &f.neck_length,      &f.shoulders_forward, &f.knee_alignment, &f.limb_fat};
     const FactorShift& shift = female ? kFemaleShift : kMaleShift;
-    const double means[] = {shift.fat_distribution,
-                            0,
-                            shift.muscle,
-                            0,
-                            shift.shoulder_slope,
-                            0,
-                            shift.lordosis,
-                            0,
-                            0,
-                            0,
-                            0,
-                            shift.limb_fat};
-    for (int k = 0; k < 12; ++k)
-      *factors[k] = kFactorScale * (means[k] + normal.truncated(truncate_factors));
+    // Each factor with its sex's mean (in the order the normals are drawn).
+    const std::pair<double*, double> factors[] = {{&f.fat_distribution, shift.fat_distribution},
+                                                  {&f.fat_layer, 0.0},
+                                                  {&f.muscle, shift.muscle},
+                                                  {&f.bust, 0.0},
+                                                  {&f.shoulder_slope, shift.shoulder_slope},
+                                                  {&f.posture, 0.0},
+                                                  {&f.lordosis, shift.lordosis},
+                                                  {&f.head_forward, 0.0},
+                                                  {&f.neck_length, 0.0},
+                                                  {&f.shoulders_forward, 0.0},
+                                                  {&f.knee_alignment, 0.0},
+                                                  {&f.limb_fat, shift.limb_fat}};
+    for (const auto& [x, mean] : factors)
+      *x = kFactorScale * (mean + normal.truncated(truncate_factors));
     people.push_back(a);
   }
   return people;
