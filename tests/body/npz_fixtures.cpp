@@ -148,12 +148,13 @@ std::string read_file(const std::filesystem::path& path) {
 
 std::map<std::string, Array> cylinder_model(const Cylinder& c) {
   const int S = c.segments, R = c.rings, K = c.components, J = c.joints;
-  const int V = S * R + 2;  // rings, then bottom and top cap centres
+  // Rings, then bottom and top cap centres, then any padding points.
+  const int V = std::max(S * R + 2, c.vertices);
   const double pi = 3.14159265358979323846;
   auto pos = [&](int v, double& x, double& y, double& z) {
     if (v >= S * R) {
       x = 0.0, z = 0.0;
-      y = c.base_y + (v == S * R ? 0.0 : c.height);
+      y = c.base_y + (v == S * R ? 0.0 : v == S * R + 1 ? c.height : 0.5 * c.height);
       return;
     }
     const int ring = v / S, seg = v % S;

@@ -49,6 +49,8 @@ std::string read_file(const std::filesystem::path& path);
 // around, v up, with a seam at segment 0), and `posedirs` with `pose_columns` columns whose
 // column 135 (in SMPL's layout: R(0,0) - 1 of joint 16, left_shoulder; the last column if
 // there are fewer) lifts every vertex by `pose_lift` metres per unit of its pose feature.
+// `vertices` above segments * rings + 2 pads the mesh with points on the axis at mid height
+// that no face uses, for look-alikes of a model's size (SMPL-X: 10,475 vertices).
 struct Cylinder {
   double radius = 0.15;
   double height = 1.7;
@@ -60,6 +62,7 @@ struct Cylinder {
   bool uvs = false;
   int pose_columns = 0;
   double pose_lift = 0.05;
+  int vertices = 0;
 };
 std::map<std::string, Array> cylinder_model(const Cylinder& c = {});
 
