@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 
 #include "body/joint_names.hpp"
 #include "body/model_validation.hpp"
@@ -109,16 +110,30 @@ long long shape_columns(long long joints, long long columns) {
 
 using RowMat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-void read_posedirs(const NpzArchive& npz, Model& m) {
-  const long long V = m.vertex_count();
-  if (!npz.contains("posedirs")) return;
-  const NpyArray a = npz.read("posedirs");
-  if (a.header.needs_pickle()) return;
-  require_shape(npz, "posedirs", a.header, {V, 3, -1},
+// Reads `posedirs` (V x 3 x P -> 3V x P, row 3v + axis) into `out`, or only checks every value
+// when `out` is null; returns P (0 if there are none or they need pickle).
+long long read_posedirs(const NpzArchive& npz, long long V, Eigen::MatrixXf* out) {
+  if (!npz.contains("posedirs")) return 0;
+  const NpyHeader h = npz.header("posedirs");
+  if (h.needs_pickle()) return 0;
+  require_shape(npz, "posedirs", h, {V, 3, -1},
                 "(V, 3, P) with V = " + std::to_string(V) + " from v_template");
-  const long long P = static_cast<long long>(a.header.shape[2]);
-  const auto pd = finite_floats(npz, "posedirs", a);
-  m.posedirs = Eigen::Map<const RowMat>(pd.data(), 3 * V, P);
+  // Straight into the matrix: as large as a shape basis, with no copies on the way.
+  read_finite_columns(npz, "posedirs", h, {{0, h.shape[2], out}});
+  return static_cast<long long>(h.shape[2]);
+}
+
+// The joint count J_regressor's header gives, or -1 if it cannot say; only a guide for which
+// shapedirs columns to read (J_regressor itself is checked in full later).
+long long peek_joint_count(const NpzArchive& npz) {
+  if (!npz.contains("J_regressor")) return -1;
+  try {
+    const NpyHeader h = npz.header("J_regressor");
+    if (h.needs_pickle() || h.shape.size() != 2) return -1;
+    return static_cast<long long>(h.shape[0]);
+  } catch (const ModelError&) {
+    return -1;
+  }
 }
 
 void read_optional_arrays(const NpzArchive& npz, Model& m) {
@@ -152,8 +167,10 @@ void read_optional_arrays(const NpzArchive& npz, Model& m) {
   }
 }
 
+// `check_all`: also check the shapedirs columns that are not kept (for `inspect`, which keeps
+// one column but answers for them all).
 Model load_from_archive(const NpzArchive& npz, int components, const std::string& model_name,
-                        int expressions) {
+                        int expressions, bool check_all = false) {
   if (expressions < 0) {
     throw ModelError(npz.label() + ": the number of expression components must be >= 0, got " +
                      std::to_string(expressions));
@@ -177,14 +194,29 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
   }
   const std::string vdesc = " with V = " + std::to_string(V) + " from v_template";
 
-  // shapedirs (V x 3 x K) -> 3V x K, row 3v + axis
-  a = read_required_array(npz, "shapedirs");
-  require_shape(npz, "shapedirs", a.header, {V, 3, -1}, "(V, 3, K)" + vdesc);
-  const long long columns = static_cast<long long>(a.header.shape[2]);
+  // shapedirs (V x 3 x K) -> 3V x K, row 3v + axis. Only the kept columns are read and
+  // converted (SMPL-X has 400, a search uses 10); which ones depends on whether this is SMPL-X
+  // (shape + expressions), which J_regressor's joint count says.
+  const NpyHeader sd = read_required_header(npz, "shapedirs");
+  require_shape(npz, "shapedirs", sd, {V, 3, -1}, "(V, 3, K)" + vdesc);
+  const long long columns = static_cast<long long>(sd.shape[2]);
   if (columns < 1) fail_array(npz, "shapedirs", "has no shape components (K = 0)");
-  // Kept as floats until J_regressor says whether this is SMPL-X (shape + expressions).
-  std::vector<float> sd = finite_floats(npz, "shapedirs", a);
-  a = NpyArray{};
+  const long long peeked_joints = peek_joint_count(npz);
+  const long long K = shape_columns(peeked_joints, columns);
+  m.total_components = static_cast<int>(K);
+  m.total_expressions = static_cast<int>(columns - K);
+  const long long keep = (components == 0 || components > K) ? K : components;
+  const long long keep_expr = std::min<long long>(expressions, columns - K);
+  {
+    const auto u = [](long long v) { return static_cast<std::size_t>(v); };
+    std::vector<ColumnSlice> slices = {{0, u(keep), &m.shapedirs}};
+    if (check_all) {
+      slices.push_back({u(keep), u(columns - keep), nullptr});
+    } else {
+      slices.push_back({u(K), u(keep_expr), &m.expression_dirs});
+    }
+    read_finite_columns(npz, "shapedirs", sd, slices);
+  }
 
   // f (F x 3), indices in [0, V)
   a = read_required_array(npz, "f");
@@ -209,21 +241,12 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
   require_shape(npz, "J_regressor", a.header, {-1, V}, "(J, V)" + vdesc);
   const long long J = static_cast<long long>(a.header.shape[0]);
   if (J < 1) fail_array(npz, "J_regressor", "has no joints");
+  // The same header as peeked above (a J_regressor it could not read failed just now).
+  if (J != peeked_joints) throw std::logic_error("load_model: J_regressor's joint count changed");
   {
     const auto jr = finite_floats(npz, "J_regressor", a);
     m.j_regressor = Eigen::Map<const RowMat>(jr.data(), J, V);
   }
-  const long long K = shape_columns(J, columns);
-  m.total_components = static_cast<int>(K);
-  m.total_expressions = static_cast<int>(columns - K);
-  const long long keep = (components == 0 || components > K) ? K : components;
-  const long long keep_expr = std::min<long long>(expressions, columns - K);
-  {
-    const Eigen::Map<const RowMat> all(sd.data(), 3 * V, columns);
-    m.shapedirs = all.leftCols(keep);
-    m.expression_dirs = all.middleCols(K, keep_expr);
-  }
-  sd = std::vector<float>();
 
   // weights (V x J)
   a = read_required_array(npz, "weights");
@@ -258,7 +281,22 @@ void load_pose_correctives(Model& model) {
   std::error_code ec;
   if (model.posedirs.size() > 0 || !std::filesystem::is_regular_file(model.source, ec)) return;
   const NpzArchive npz = NpzArchive::open_file(model.source);
-  read_posedirs(npz, model);
+  read_posedirs(npz, model.vertex_count(), &model.posedirs);
+}
+
+ModelCheck check_model(const std::string& name_or_path) {
+  ModelCheck out;
+  if (name_or_path.empty() || is_builtin_model_name(name_or_path)) {
+    const std::string name = name_or_path.empty() ? "neutral" : name_or_path;
+    out.model = load_from_archive(open_builtin_model_archive(name), 1, name, 0, true);
+    out.model.name = name;
+    return out;  // pose correctives are read from files only, as load_pose_correctives does
+  }
+  const std::filesystem::path path(name_or_path);
+  const NpzArchive npz = NpzArchive::open_file(path);
+  out.model = load_from_archive(npz, 1, path.stem().string(), 0, true);
+  out.pose_columns = static_cast<int>(read_posedirs(npz, out.model.vertex_count(), nullptr));
+  return out;
 }
 
 Model load_model(const std::filesystem::path& path, int components, int expressions) {

@@ -28,6 +28,18 @@ Model load_model_from_memory(const void* data, std::size_t size, const std::stri
 // them, or did not come from a file; throws ModelError if the array is malformed.
 void load_pose_correctives(Model& model);
 
+// What `inspect` reports on a model (a built-in name or a file, as resolve_model takes it):
+// the model with its first shape component only, after checking every value of all its shape
+// and expression components and of its pose correctives (what load_pose_correctives would
+// read), none of which are kept; `pose_columns` is posedirs' column count (0: none). A check
+// costs one pass over the file's bytes and the memory of the kept arrays. Throws ModelError as
+// load_model does.
+struct ModelCheck {
+  Model model;
+  int pose_columns = 0;
+};
+ModelCheck check_model(const std::string& name_or_path);
+
 // The built-in body models (assets/body_{female,male,neutral}.npz compiled into the binary):
 // their names, in the order female, male, neutral.
 const std::vector<std::string>& builtin_model_names();

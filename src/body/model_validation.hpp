@@ -14,6 +14,10 @@ namespace body {
 // Reads a required array; missing arrays and arrays that need Python pickle are errors.
 NpyArray read_required_array(const NpzArchive& npz, const std::string& name);
 
+// The header of a required array, without its data (the same errors as read_required_array,
+// and an entry too short for the data is an error too).
+NpyHeader read_required_header(const NpzArchive& npz, const std::string& name);
+
 // Requires the given rank; dims[i] < 0 means "any size". `what` describes the expected shape
 // for the message, e.g. "(V, 3)".
 void require_shape(const NpzArchive& npz, const std::string& name, const NpyHeader& h,
@@ -22,6 +26,23 @@ void require_shape(const NpzArchive& npz, const std::string& name, const NpyHead
 // Requires a numeric dtype and returns the values (C order) as float, rejecting NaN and Inf
 // with the multi-index of the first bad value.
 std::vector<float> finite_floats(const NpzArchive& npz, const std::string& name, const NpyArray& a);
+
+// Columns [first, first + count) of an array's last axis, read into `out` (resized to rows x
+// count, rows = the product of the other dimensions with the last but one fastest, as C order
+// has them: row 3 v + axis of a (V, 3, K) shape basis), or only checked when `out` is null.
+struct ColumnSlice {
+  std::size_t first = 0;
+  std::size_t count = 0;
+  Eigen::MatrixXf* out = nullptr;
+};
+
+// finite_floats for some columns of a numeric array (rank >= 1) with header `h`, read straight
+// from the archive into their matrices: only the bytes of those columns are read where the
+// entry is stored (all of it is inflated where it is deflated) and only they are converted, and
+// no copy of the whole array is made. Slices in increasing order, not overlapping. NaN and Inf
+// are reported with their index in the whole array, the first in C order.
+void read_finite_columns(const NpzArchive& npz, const std::string& name, const NpyHeader& h,
+                         const std::vector<ColumnSlice>& slices);
 
 // Requires an integer dtype (or integral floats) and returns the values in C order.
 std::vector<std::int64_t> integer_values(const NpzArchive& npz, const std::string& name,

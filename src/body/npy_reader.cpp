@@ -192,6 +192,44 @@ void for_each_c_order(const NpyHeader& h, Fn fn) {
   }
 }
 
+// One stored numeric item (n = h.item_size bytes) as T, sign-extending signed integers.
+template <typename T>
+T decode_one(const NpyHeader& h, const std::uint8_t* p, bool swap) {
+  const std::size_t n = h.item_size;
+  const std::uint64_t bits = load_uint(p, n, swap);
+  if (h.kind == 'f') {
+    if (n == 4) {
+      float f;
+      const auto b32 = static_cast<std::uint32_t>(bits);
+      std::memcpy(&f, &b32, 4);
+      return static_cast<T>(f);
+    }
+    double d;
+    std::memcpy(&d, &bits, 8);
+    return static_cast<T>(d);
+  }
+  if (h.kind == 'i') {
+    // Sign-extend from n bytes.
+    const unsigned shift = static_cast<unsigned>(64 - 8 * n);
+    const auto v = static_cast<std::int64_t>(bits << shift) >> shift;
+    return static_cast<T>(v);
+  }
+  return static_cast<T>(bits);
+}
+
+template <typename T>
+void decode_run(const NpyHeader& h, const std::uint8_t* bytes, std::size_t n, T* out) {
+  if (!h.is_numeric()) throw NpyError("dtype " + h.dtype_name() + " is not numeric");
+  const bool swap = h.big_endian != host_is_big_endian();
+  // The common case (native float of the same width) is a plain copy; model files are mostly
+  // that, and shape bases run to tens of millions of values.
+  if (!swap && h.kind == 'f' && h.item_size == sizeof(T)) {
+    std::memcpy(out, bytes, n * sizeof(T));
+    return;
+  }
+  for (std::size_t i = 0; i < n; ++i) out[i] = decode_one<T>(h, bytes + i * h.item_size, swap);
+}
+
 template <typename T>
 std::vector<T> convert_numeric(const NpyArray& a) {
   const NpyHeader& h = a.header;
@@ -201,30 +239,7 @@ std::vector<T> convert_numeric(const NpyArray& a) {
   out.reserve(h.element_count());
   const std::uint8_t* base = a.data.data();
   const std::size_t n = h.item_size;
-  for_each_c_order(h, [&](std::size_t s) {
-    const std::uint64_t bits = load_uint(base + s * n, n, swap);
-    T value;
-    if (h.kind == 'f') {
-      if (n == 4) {
-        float f;
-        const auto b32 = static_cast<std::uint32_t>(bits);
-        std::memcpy(&f, &b32, 4);
-        value = static_cast<T>(f);
-      } else {
-        double d;
-        std::memcpy(&d, &bits, 8);
-        value = static_cast<T>(d);
-      }
-    } else if (h.kind == 'i') {
-      // Sign-extend from n bytes.
-      const unsigned shift = static_cast<unsigned>(64 - 8 * n);
-      const auto v = static_cast<std::int64_t>(bits << shift) >> shift;
-      value = static_cast<T>(v);
-    } else {
-      value = static_cast<T>(bits);
-    }
-    out.push_back(value);
-  });
+  for_each_c_order(h, [&](std::size_t s) { out.push_back(decode_one<T>(h, base + s * n, swap)); });
   return out;
 }
 
@@ -340,17 +355,29 @@ NpyHeader parse_npy_header(const std::uint8_t* bytes, std::size_t size) {
   return h;
 }
 
+void check_npy_data_size(const NpyHeader& h, std::size_t available) {
+  if (h.needs_pickle()) return;
+  const std::size_t need = h.element_count() * h.item_size;
+  if (need > available) {
+    throw NpyError("array larger than the file: shape " + h.shape_string() + " of " +
+                   h.dtype_name() + " needs " + std::to_string(need) + " bytes but only " +
+                   std::to_string(available) + " are stored");
+  }
+}
+
+void decode_numbers(const NpyHeader& h, const std::uint8_t* bytes, std::size_t n, float* out) {
+  decode_run(h, bytes, n, out);
+}
+void decode_numbers(const NpyHeader& h, const std::uint8_t* bytes, std::size_t n, double* out) {
+  decode_run(h, bytes, n, out);
+}
+
 NpyArray parse_npy(const std::uint8_t* bytes, std::size_t size) {
   NpyArray a;
   a.header = parse_npy_header(bytes, size);
   if (a.header.needs_pickle()) return a;  // no data: object arrays are pickled Python objects
+  check_npy_data_size(a.header, size - a.header.data_offset);
   const std::size_t need = a.header.element_count() * a.header.item_size;
-  const std::size_t have = size - a.header.data_offset;
-  if (need > have) {
-    throw NpyError("array larger than the file: shape " + a.header.shape_string() + " of " +
-                   a.header.dtype_name() + " needs " + std::to_string(need) + " bytes but only " +
-                   std::to_string(have) + " are stored");
-  }
   a.data.assign(bytes + a.header.data_offset, bytes + a.header.data_offset + need);
   return a;
 }

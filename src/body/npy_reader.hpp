@@ -52,6 +52,15 @@ struct NpyArray {
   std::vector<std::string> to_strings() const;
 };
 
+// Throws NpyError "array larger than the file: ..." unless `available` bytes of data (after the
+// header) hold the whole array; object arrays carry no data and always pass.
+void check_npy_data_size(const NpyHeader& h, std::size_t available);
+
+// Converts `n` stored items of a numeric array (h's dtype and byte order, contiguous) to float or
+// double, exactly as NpyArray::to_float() / to_double() do, for arrays read piece by piece.
+void decode_numbers(const NpyHeader& h, const std::uint8_t* bytes, std::size_t n, float* out);
+void decode_numbers(const NpyHeader& h, const std::uint8_t* bytes, std::size_t n, double* out);
+
 // Parses a complete .npy held in memory. Throws NpyError for bad magic, bad header,
 // unsupported dtypes (object arrays parse their header but carry no data), and data shorter
 // than the shape says ("array larger than the file").

@@ -43,8 +43,10 @@ int run(int argc, char** argv) {
     return 1;
   }
   try {
-    body::Model m = body::resolve_model(path, 0);
-    body::load_pose_correctives(m);
+    // Every value is checked, but only one shape component is kept: the counts come from the
+    // headers, and converting 400 columns of an SMPL-X file would only be thrown away.
+    const body::ModelCheck check = body::check_model(path);
+    const body::Model& m = check.model;
     std::printf("usable  yes: %d vertices, %d faces, %d joints (root '%s'), %d shape components\n",
                 m.vertex_count(), static_cast<int>(m.faces.rows()), m.joint_count(),
                 m.joint_names.empty() ? "" : m.joint_names.front().c_str(), m.total_components);
@@ -52,9 +54,9 @@ int run(int argc, char** argv) {
       std::printf("extras  %d expression components (SMPL-X; exported with --expressions N)\n",
                   m.total_expressions);
     }
-    if (m.posedirs.cols() > 0) {
-      const bool smpl_layout = m.posedirs.cols() == 9 * (m.joint_count() - 1);
-      std::printf("extras  posedirs with %d columns: %s\n", static_cast<int>(m.posedirs.cols()),
+    if (check.pose_columns > 0) {
+      const bool smpl_layout = check.pose_columns == 9 * (m.joint_count() - 1);
+      std::printf("extras  posedirs with %d columns: %s\n", check.pose_columns,
                   smpl_layout ? "pose correctives for --rest-pose t"
                               : "not in SMPL's 9 (J - 1) layout, not applied");
     }

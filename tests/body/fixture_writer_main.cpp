@@ -61,8 +61,7 @@ int main(int argc, char** argv) {
     } else if (a == "--components" && has_value && positive_int(argv[next + 1], c.components) &&
                c.components > 0) {
       ++next;
-    } else if (a == "--pose-columns" && has_value &&
-               positive_int(argv[next + 1], c.pose_columns)) {
+    } else if (a == "--pose-columns" && has_value && positive_int(argv[next + 1], c.pose_columns)) {
       ++next;
     } else if (a == "--float64") {
       float64 = true;
