@@ -24,7 +24,7 @@ int usage() {
   return 2;
 }
 
-bool positive_int(const char* text, int& out) {
+bool non_negative_int(const char* text, int& out) {
   char* end = nullptr;
   const long v = std::strtol(text, &end, 10);
   if (end == text || *end != '\0' || v < 0 || v > 100000000) return false;
@@ -56,12 +56,13 @@ int main(int argc, char** argv) {
   for (; next < argc; ++next) {
     const std::string a = argv[next];
     const bool has_value = next + 1 < argc;
-    if (a == "--vertices" && has_value && positive_int(argv[next + 1], c.vertices)) {
+    if (a == "--vertices" && has_value && non_negative_int(argv[next + 1], c.vertices)) {
       ++next;
-    } else if (a == "--components" && has_value && positive_int(argv[next + 1], c.components) &&
+    } else if (a == "--components" && has_value && non_negative_int(argv[next + 1], c.components) &&
                c.components > 0) {
       ++next;
-    } else if (a == "--pose-columns" && has_value && positive_int(argv[next + 1], c.pose_columns)) {
+    } else if (a == "--pose-columns" && has_value &&
+               non_negative_int(argv[next + 1], c.pose_columns)) {
       ++next;
     } else if (a == "--float64") {
       float64 = true;

@@ -2,6 +2,7 @@
 // validation), then evaluation, measurements and glTF export of what it accepts.
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 
 #include "body/body_model.hpp"
 #include "body/gltf_export.hpp"
@@ -14,6 +15,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     model = body::load_model_from_memory(data, size, "fuzz.npz", 0);
   } catch (const body::ModelError&) {
     return 0;  // refused with a message: fine
+  }
+  // Fewer components read other bytes (only some columns of shapedirs): a file that loads whole
+  // loads in part too, with the same numbers.
+  const body::Model part = body::load_model_from_memory(data, size, "fuzz.npz", 1, 0);
+  if (!(part.shapedirs.array() == model.shapedirs.leftCols(1).array()).all()) std::abort();
+  // SMPL-X's expression columns are read (and checked) only when asked for.
+  try {
+    const body::Model expr =
+        body::load_model_from_memory(data, size, "fuzz.npz", 1, model.total_expressions);
+    if (expr.expression_dirs.cols() != model.total_expressions) std::abort();
+  } catch (const body::ModelError&) {
   }
   // Accepted models must evaluate, measure and export without any exception but ExportError.
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
