@@ -1,6 +1,6 @@
 #version 330 core
-// Photo colour enhancement (12 parameters): colour balance for shadows, midtones and
-// highlights, then brightness, contrast and saturation. The same formula runs on the CPU for
+// Photo colour enhancement (12 parameters): brightness, contrast and saturation, then colour
+// balance for shadows, midtones and highlights. The same formula runs on the CPU for
 // exports (src/spaces/photo_enhancement.cpp); keep the two in step.
 in vec2 v_uv;
 out vec4 frag_colour;
@@ -11,22 +11,26 @@ uniform vec4 u_rect;    // image rectangle in the viewport: x0, y0, x1, y1 in [0
 uniform vec3 u_backdrop;
 
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);
+// What +-1 of a parameter does (the constants of photo_enhancement.cpp).
+const float kBalanceShift = 0.12;
+const float kBrightnessLog2Gamma = 0.6;
+const float kContrastLog2Slope = 0.6;
+const float kSaturationRange = 0.5;
 
 vec3 enhance(vec3 c) {
+  // Tone first, colour balance last (see photo_enhancement.cpp).
+  c = pow(c, vec3(exp2(-kBrightnessLog2Gamma * u_p[0])));
+  c = clamp((c - 0.5) * exp2(kContrastLog2Slope * u_p[1]) + 0.5, 0.0, 1.0);
   float l = dot(c, kLuma);
-  float w_shadow = 1.0 - smoothstep(0.0, 0.5, l);
-  float w_high = smoothstep(0.5, 1.0, l);
+  c = clamp(mix(vec3(l), c, 1.0 + kSaturationRange * u_p[2]), 0.0, 1.0);
+  float w_shadow = (1.0 - l) * (1.0 - l);  // Bernstein weights (see photo_enhancement.cpp)
+  float w_high = l * l;
   float w_mid = 1.0 - w_shadow - w_high;
-  vec3 shift = 0.25 * (w_shadow * vec3(u_p[3], u_p[4], u_p[5]) +
-                       w_mid * vec3(u_p[6], u_p[7], u_p[8]) +
-                       w_high * vec3(u_p[9], u_p[10], u_p[11]));
-  shift -= dot(shift, kLuma);  // balance moves hue, not brightness
-  c = clamp(c + shift, 0.0, 1.0);
-  c = clamp(c + 0.3 * u_p[0], 0.0, 1.0);
-  c = clamp((c - 0.5) * exp2(u_p[1]) + 0.5, 0.0, 1.0);
-  float l2 = dot(c, kLuma);
-  c = clamp(mix(vec3(l2), c, 1.0 + u_p[2]), 0.0, 1.0);
-  return c;
+  vec3 shift = kBalanceShift * (w_shadow * vec3(u_p[3], u_p[4], u_p[5]) +
+                                w_mid * vec3(u_p[6], u_p[7], u_p[8]) +
+                                w_high * vec3(u_p[9], u_p[10], u_p[11]));
+  shift -= dot(shift, kLuma);  // luminosity preserved (see photo_enhancement.cpp)
+  return clamp(c + shift, 0.0, 1.0);
 }
 
 void main() {

@@ -92,7 +92,7 @@ class DesignSpace {
   virtual std::string dimension_name(int i) const = 0;
   // More about it for a tooltip (its measured effect in numbers, its share of the variance).
   virtual std::string dimension_details(int /*i*/) const { return {}; }
-  // The paper's choices: 3x3 for bodies, 5x5 for photos.
+  // 3x3 for bodies (the paper's) and for photos (the paper had 5x5, see PhotoSpace).
   virtual int default_grid_size() const = 0;
   // Bodies are 3D (one shared orbit camera); photos are flat.
   virtual bool uses_camera() const = 0;
@@ -131,6 +131,10 @@ class DesignSpace {
     return {};
   }
   virtual Eigen::VectorXd perceptual_scale() const { return {}; }
+  // With perceptual_scale(): the smallest length of a plane's sides in its units, so that a
+  // grid of this space's size can hold cells that all look different; 0 keeps the
+  // optimizer's default (sps::SearchOptions::min_plane_length).
+  virtual double min_plane_length() const { return 0.0; }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const { return {}; }

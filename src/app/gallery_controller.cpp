@@ -517,6 +517,9 @@ void GalleryController::install_perception() {
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
       session_->set_perceptual_scale(scale);
+      if (space_->min_plane_length() > 0.0) {
+        session_->set_min_plane_length(space_->min_plane_length());
+      }
     }
   }
   // Sessions saved before the target estimate existed have a scale but no population: their
@@ -526,8 +529,10 @@ void GalleryController::install_perception() {
     const sps::Population population = space_->population();
     if (population.mean.size() == search.dims) session_->set_population(population);
   }
-  session_->set_perceptual_distance(space_->perceptual_distance(),
-                                    space_->zoom_policy(cell_pixels_));
+  if (options_.perceptual_zoom) {
+    session_->set_perceptual_distance(space_->perceptual_distance(),
+                                      space_->zoom_policy(cell_pixels_));
+  }
 }
 
 void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> space) {

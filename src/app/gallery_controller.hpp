@@ -34,7 +34,7 @@ enum class ResumePolicy { kAsk, kYes, kNo };
 struct ControllerOptions {
   SpaceSettings space;        // the space of a new search (a resumed session brings its own)
   bool space_chosen = false;  // `space` was asked for (the command line), not a default
-  int grid_size = 0;          // 0 = the space's default (3 for bodies, 5 for photos)
+  int grid_size = 0;          // 0 = the space's default (3x3)
   int zoom_levels = 4;
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file; empty = no autosave
@@ -42,7 +42,10 @@ struct ControllerOptions {
   double zoom_seconds = 1.5;
   double morph_seconds = 0.6;
   int optimizer_delay_ms = 0;  // testing: hold each optimizer run back
-  bool log = true;             // messages also go to stdout / stderr
+  // testing: false leaves the space's perceptual distance out (the paper's fixed zoom, so a
+  // plane always takes zoom_levels clicks), for tests of what clicks do to a session.
+  bool perceptual_zoom = true;
+  bool log = true;  // messages also go to stdout / stderr
   // Autosave on a thread of its own (the window); off, every save is done before the intent
   // that caused it returns (tests read the file right after).
   bool background_autosave = false;

@@ -110,6 +110,7 @@ GalleryView::GalleryView(ViewOptions options, UiPrefs prefs)
   thumbnail_camera_.set_preset(render::ViewPreset::kFront);
   open_model_file_ = prefs_.body_model_file;
   select_model_source(prefs_.body_model);
+  open_photo_file_ = prefs_.photo_file;
   set_preset(std::clamp(prefs_.view_preset, 0, 2));
   save_path_ = options_.save_path;
   if (save_path_.empty() && !prefs_.save_name.empty()) {
@@ -154,6 +155,11 @@ void GalleryView::sync_space(GalleryController& c) {
   const SpaceSettings s = c.space().settings();
   open_kind_ = s.kind;
   open_source_ = s.kind == "body" ? std::string() : s.source;
+  if (s.kind == "photo" && !s.source.empty()) {
+    // A picture that opened is the one offered next time (also after a relaunch).
+    open_photo_file_ = s.source;
+    prefs_.photo_file = s.source;
+  }
   if (s.kind == "body") {
     // A body search this view started has opened: its model is the one to start with next
     // time. (A session resumed or a --model given on the command line is not a choice made
@@ -713,7 +719,7 @@ void GalleryView::draw_open(GalleryController& c) {
   }
   ImGui::SameLine();
   if (ImGui::RadioButton("photo colours", open_kind_ == "photo")) {
-    if (open_kind_ != "photo") open_source_.clear(), open_dims_ = 12, open_grid_ = 5;
+    if (open_kind_ != "photo") open_source_ = open_photo_file_, open_dims_ = 12, open_grid_ = 3;
     open_kind_ = "photo";
   }
   if (open_kind_ == "body") {
@@ -722,9 +728,17 @@ void GalleryView::draw_open(GalleryController& c) {
     ImGui::InputInt("components", &open_dims_);
     open_dims_ = std::clamp(open_dims_, 1, sps::kMaxSearchDims);
   } else {
-    ImGui::TextUnformatted("Photo (.png/.jpg; empty = built-in; or drop a file here)");
-    ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 8.0f));
-    ImGui::InputText("##source", &open_source_);
+    ImGui::TextUnformatted("Photo (.png/.jpg; empty = the built-in landscape; or drop one here)");
+    ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 90.0f));
+    ImGui::InputTextWithHint("##source", "built-in landscape", &open_source_);
+    note_widget("photo:file");
+    ImGui::SameLine();
+    if (ImGui::Button("Browse...##photo")) open_image_dialog();
+    note_widget("photo:browse");
+    std::error_code ec;
+    if (!open_source_.empty() && !fs::exists(open_source_, ec)) {
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "No such file");
+    }
   }
   ImGui::TextUnformatted("Grid");
   ImGui::SameLine();
@@ -735,7 +749,10 @@ void GalleryView::draw_open(GalleryController& c) {
   ImGui::SetNextItemWidth(100);
   ImGui::InputInt("clicks/plane", &open_zoom_);
   open_zoom_ = std::clamp(open_zoom_, 1, 8);
-  const bool no_file = open_kind_ == "body" && open_model_ == "file" && open_model_file_.empty();
+  std::error_code exists_ec;
+  const bool no_file =
+      (open_kind_ == "body" && open_model_ == "file" && open_model_file_.empty()) ||
+      (open_kind_ == "photo" && !open_source_.empty() && !fs::exists(open_source_, exists_ec));
   ImGui::BeginDisabled(c.busy() || no_file);
   if (ImGui::Button("Open / apply (starts a new search)")) start_new_search(c);
   note_widget("new-search");
@@ -798,6 +815,12 @@ void GalleryView::set_model_file(const std::string& path) {
 
 void GalleryView::start_new_search(GalleryController& c) {
   SpaceSettings space{open_kind_, open_source_, open_kind_ == "body" ? open_dims_ : 12};
+  if (open_kind_ == "photo" && !open_source_.empty()) {
+    // As for a model file: the session keeps the picture wherever the program starts next.
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(open_source_, ec);
+    if (!ec) space.source = absolute.lexically_normal().string();
+  }
   if (open_kind_ == "body") {
     if (open_model_ == "file") {
       if (open_model_file_.empty()) return;
@@ -946,7 +969,8 @@ void GalleryView::draw_modals(GalleryController& c) {
 
 void GalleryView::draw_file_browser() {
   const bool saving = dialog_purpose_ == DialogPurpose::kSave;
-  const char* title = saving ? "Save as" : "Open a body model";
+  const bool image = dialog_purpose_ == DialogPurpose::kOpenImage;
+  const char* title = saving ? "Save as" : image ? "Open a photo" : "Open a body model";
   if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title, nullptr)) return;
@@ -965,11 +989,12 @@ void GalleryView::draw_file_browser() {
        !ec && it != end; it.increment(ec)) {
     if (it->path().filename().string().rfind('.', 0) == 0) continue;
     std::error_code e1;
-    // Opening a model: folders and model files only (.pkl too, to say how to convert it).
-    if (!saving && !it->is_directory(e1) && lower_extension(it->path()) != ".npz" &&
-        lower_extension(it->path()) != ".pkl") {
-      continue;
-    }
+    // Opening a model: folders and model files only (.pkl too, to say how to convert it);
+    // a photo: folders and pictures.
+    const std::string ext = lower_extension(it->path());
+    const bool wanted = image ? (ext == ".png" || ext == ".jpg" || ext == ".jpeg")
+                              : (ext == ".npz" || ext == ".pkl");
+    if (!saving && !it->is_directory(e1) && !wanted) continue;
     entries.push_back(*it);
   }
   std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
@@ -1029,23 +1054,37 @@ void GalleryView::open_model_dialog() {
   open_file_dialog(folder, current.filename().string());
 }
 
+void GalleryView::open_image_dialog() {
+  if (desktop_dialog_.valid() || browser_open_) return;
+  dialog_purpose_ = DialogPurpose::kOpenImage;
+  const fs::path current(open_source_.empty() ? open_photo_file_ : open_source_);
+  std::error_code ec;
+  const fs::path folder = current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
+  open_file_dialog(folder, current.filename().string());
+}
+
 // The desktop's dialog (zenity, kdialog) when there is one and it is wanted, else the in-app
-// browser; for saving or for opening a body model, per dialog_purpose_.
+// browser; for saving, opening a body model or opening a photo, per dialog_purpose_.
 void GalleryView::open_file_dialog(const fs::path& folder, const std::string& name) {
   const bool saving = dialog_purpose_ == DialogPurpose::kSave;
   if (options_.file_dialog != "builtin") {
     const std::string start = shell_quote((folder / name).string());
     std::string command;
+    const bool image = dialog_purpose_ == DialogPurpose::kOpenImage;
     if (const std::string zenity = find_program("zenity"); !zenity.empty()) {
       command = shell_quote(zenity) + " --file-selection " +
-                (saving ? std::string("--save --title='Save'")
-                        : std::string("--title='Choose a body model' --file-filter='Body models "
-                                      "(.npz) | *.npz' --file-filter='All files | *'")) +
+                (saving  ? std::string("--save --title='Save'")
+                 : image ? std::string("--title='Choose a photo' --file-filter='Photos (.png, "
+                                       ".jpg) | *.png *.jpg *.jpeg *.PNG *.JPG *.JPEG' "
+                                       "--file-filter='All files | *'")
+                         : std::string("--title='Choose a body model' --file-filter='Body models "
+                                       "(.npz) | *.npz' --file-filter='All files | *'")) +
                 " --filename=" + start + " 2>/dev/null";
     } else if (const std::string kdialog = find_program("kdialog"); !kdialog.empty()) {
       command = shell_quote(kdialog) +
-                (saving ? " --getsavefilename " + start
-                        : " --getopenfilename " + start + " '*.npz|Body models (.npz)'") +
+                (saving  ? " --getsavefilename " + start
+                 : image ? " --getopenfilename " + start + " '*.png *.jpg *.jpeg|Photos'"
+                         : " --getopenfilename " + start + " '*.npz|Body models (.npz)'") +
                 " 2>/dev/null";
     }
     if (!command.empty()) {
@@ -1062,6 +1101,8 @@ void GalleryView::open_file_dialog(const fs::path& folder, const std::string& na
 void GalleryView::file_chosen(GalleryController& c, const fs::path& path) {
   if (dialog_purpose_ == DialogPurpose::kSave) {
     request_export(c, path);
+  } else if (dialog_purpose_ == DialogPurpose::kOpenImage) {
+    open_source_ = path.string();
   } else {
     set_model_file(path.string());
   }
@@ -1106,7 +1147,7 @@ void GalleryView::open_dropped(GalleryController& c, const std::string& path) {
   if (image) {
     open_source_ = path;
     open_dims_ = 12;
-    open_grid_ = 5;
+    open_grid_ = 3;
   } else {
     set_model_file(path);
     open_grid_ = 3;

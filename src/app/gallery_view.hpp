@@ -112,6 +112,7 @@ class GalleryView {
                           float centre_y);
   void request_export(GalleryController& c, const std::filesystem::path& path);
   void open_save_dialog(GalleryController& c);
+  void open_image_dialog();
   void open_model_dialog();
   void open_file_dialog(const std::filesystem::path& folder, const std::string& name);
   void file_chosen(GalleryController& c, const std::filesystem::path& path);
@@ -156,6 +157,7 @@ class GalleryView {
   std::string open_source_;  // the photo file (bodies: the model picker below)
   std::string open_model_ = "neutral";
   std::string open_model_file_;
+  std::string open_photo_file_;  // the last picture opened (prefs), offered for a photo search
   // The body model of a new search this view asked for; remembered in the prefs once that
   // search has opened (a file that fails to load is not remembered).
   std::optional<std::string> requested_model_;
@@ -174,7 +176,7 @@ class GalleryView {
   std::optional<std::filesystem::path> confirm_overwrite_;
   bool confirm_start_over_ = false;
   // What the file dialog (desktop or in-app) is choosing.
-  enum class DialogPurpose { kSave, kOpenModel };
+  enum class DialogPurpose { kSave, kOpenModel, kOpenImage };
   DialogPurpose dialog_purpose_ = DialogPurpose::kSave;
   // The in-app file browser.
   bool browser_open_ = false;

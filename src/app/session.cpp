@@ -278,18 +278,24 @@ void Session::update_views() {
     // The optimizer's plane is too small to see (e.g. it runs along directions that barely
     // change the body): widen the first grid beyond the plane's square, as long as no cell
     // leaves the box.
+    // Cells clamped onto the box are a last resort (the outer cells then lie on the box's
+    // faces, off the plane): tried only when no wider grid inside the box has none.
     const sps::GridView base = views_.front();
-    for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
-      sps::GridView wider = base;
-      wider.spacing *= factor;
-      bool clamped = false;
-      for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
-      if (clamped) break;
-      if (!shows_look_alikes(wider, policy_.look_alike_mm)) {
-        views_.front() = wider;
-        break;
+    const auto widen = [&](bool allow_clamped) {
+      for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
+        sps::GridView wider = base;
+        wider.spacing *= factor;
+        bool clamped = false;
+        for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
+        if (clamped && !allow_clamped) return false;
+        if (!shows_look_alikes(wider, policy_.look_alike_mm)) {
+          views_.front() = wider;
+          return true;
+        }
       }
-    }
+      return false;
+    };
+    if (!widen(false)) widen(true);
   }
   ended_early_ = false;
   for (std::size_t i = 0; i < path_.size(); ++i) {

@@ -135,6 +135,9 @@ class Session {
   // perceptual scale the planes are then centred on the estimate of the design the person has
   // in mind (sps::SearchOptions::population), from the next plane on (saved with the search).
   void set_population(const sps::Population& population) { search_.set_population(population); }
+  // The smallest length of a plane's sides in the perceptual scale's units
+  // (sps::SearchOptions::min_plane_length), from the next plane on (saved with the search).
+  void set_min_plane_length(double length) { search_.set_min_plane_length(length); }
 
   // Holds (issue 13; app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected

@@ -77,6 +77,7 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
   p.history_panel = get_bool("history_panel", p.history_panel);
   if (const std::string model = get_string("body_model"); !model.empty()) p.body_model = model;
   p.body_model_file = get_string("body_model_file");
+  p.photo_file = get_string("photo_file");
   p.imperial = get_bool("imperial", false);
   if (const auto it = j.find("typed_targets"); it != j.end() && it->is_object()) {
     // Short texts under short names only: anything else is not what this window wrote.
@@ -93,12 +94,13 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
 
 bool save_ui_prefs(const UiPrefs& p, const std::filesystem::path& path) {
   const nlohmann::json j = {
-      {"window_width", p.window_width},   {"window_height", p.window_height},
-      {"save_folder", p.save_folder},     {"save_name", p.save_name},
-      {"view_preset", p.view_preset},     {"open_panel", p.open_panel},
-      {"save_panel", p.save_panel},       {"history_panel", p.history_panel},
-      {"body_model", p.body_model},       {"body_model_file", p.body_model_file},
-      {"typed_targets", p.typed_targets}, {"imperial", p.imperial}};
+      {"window_width", p.window_width}, {"window_height", p.window_height},
+      {"save_folder", p.save_folder},   {"save_name", p.save_name},
+      {"view_preset", p.view_preset},   {"open_panel", p.open_panel},
+      {"save_panel", p.save_panel},     {"history_panel", p.history_panel},
+      {"body_model", p.body_model},     {"body_model_file", p.body_model_file},
+      {"photo_file", p.photo_file},     {"typed_targets", p.typed_targets},
+      {"imperial", p.imperial}};
   try {
     util::write_file_atomically(path, j.dump(1), /*create_folders=*/true);
     return true;

@@ -23,6 +23,8 @@ struct UiPrefs {
   // or a model file. A launch without --model starts a new search on it.
   std::string body_model = "neutral";
   std::string body_model_file;  // the last file chosen, offered again under "File"
+  // The last picture a photo search opened from a file, offered again in New search.
+  std::string photo_file;
   // The measurement panel: typed targets not yet used ("height" -> "180cm"), and its units.
   std::map<std::string, std::string> typed_targets;
   bool imperial = false;
@@ -33,7 +35,7 @@ struct UiPrefs {
            view_preset == o.view_preset && open_panel == o.open_panel &&
            save_panel == o.save_panel && history_panel == o.history_panel &&
            body_model == o.body_model && body_model_file == o.body_model_file &&
-           typed_targets == o.typed_targets && imperial == o.imperial;
+           photo_file == o.photo_file && typed_targets == o.typed_targets && imperial == o.imperial;
   }
   bool operator!=(const UiPrefs& o) const { return !(*this == o); }
 };

@@ -14,6 +14,7 @@
 #include "cli/command_registry.hpp"
 #include "cli/simulate_body.hpp"
 #include "cli/simulate_common.hpp"
+#include "cli/simulate_photo.hpp"
 #include "sps/plane_search.hpp"
 #include "testing/simulated_user.hpp"
 #include "testing/test_functions.hpp"
@@ -78,6 +79,24 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --compare-mm D      zoom-level clicks count only over cells differing by >= D mm (default 40)
   --zoom-factors F,.. zoom steps the session tries in order (default 0.7,0.8; the paper: 0.5)
 
+photo benchmark (--function photo): the paper's photo application. Each trial has a target
+edit of the picture; a simulated person clicks through the window's session logic (3x3 grids,
+the same zoom adaptation in colour differences) and cannot tell apart cells whose mean
+CIEDE2000 differences to the target lie within the JND of the best one. Gap = mean CIEDE2000
+(on a 40-pixel copy of the picture) of the best edit chosen so far to the target; the same
+columns as the body benchmark (duplicate_grids: grids with two cells closer than the session's
+--distinct-delta-e, by the visible difference).
+  --target T          random (default: each trial a seeded edit, every parameter N(0, 0.4) of
+                      its -1..+1 range, within +-0.9) | warmer-brighter | cooler | more-contrast
+  --image FILE        the picture (PNG or JPEG; default the built-in landscape)
+  --jnd-delta-e D     the person's threshold (default 2.3)
+  --distinct-delta-e D  the session's: no grid with two cells closer (default 3.5, the window's)
+  --grid 3|5, --levels L   (default 3, 4: the window's photo grid)
+  --no-adapt, --no-perceptual-scale, --no-target-model   as for the body benchmark
+  --min-plane-delta-e L  smallest perceptual length of u and v (default 20, as the window)
+  --compare-delta-e D    zoom-level clicks count only over cells this different (default 2 JND)
+  --choice-temperature T the target estimate's softmax temperature (default 3)
+
 model settings (defaults are the paper's):
   --amplitude-prior A, --length-scale-prior L, --prior-log-variance V, --btl-scale S,
   --noise-variance B, --plane-restarts N, --ei-starts N, --representatives 5|9
@@ -100,6 +119,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (args.get_or("function", "gaussian") == "body") return cli::run_body_simulation(args);
+  if (args.get_or("function", "gaussian") == "photo") return cli::run_photo_simulation(args);
   std::set<std::string> known{"function",   "dims", "optimum",       "user",   "trials",
                               "iterations", "seed", "grid",          "levels", "resolution",
                               "zoom-prefs", "csv",  "per-trial-csv", "quiet"};

@@ -31,12 +31,14 @@ PhotoRenderer::PhotoRenderer(int width, int height, const std::vector<std::uint8
 
 void PhotoRenderer::draw(const std::array<float, 12>& params, int viewport_w,
                          int viewport_h) const {
-  // Fit the photo into the viewport, keeping its aspect.
+  // Fill the viewport with the photo, keeping its aspect: a square grid cell shows the middle
+  // of a landscape picture edge to edge (a colour edit is the same everywhere, and grey bars
+  // above and below took a third of a cell), the previews in the photo's aspect all of it.
   const float image_aspect = static_cast<float>(width_) / static_cast<float>(height_);
   const float view_aspect =
       static_cast<float>(std::max(1, viewport_w)) / static_cast<float>(std::max(1, viewport_h));
   float x0 = 0, y0 = 0, x1 = 1, y1 = 1;
-  if (image_aspect > view_aspect) {
+  if (image_aspect < view_aspect) {
     const float h = view_aspect / image_aspect;
     y0 = 0.5f - 0.5f * h;
     y1 = 0.5f + 0.5f * h;

@@ -1,5 +1,5 @@
 // Draws a photo with the 12-parameter colour enhancement (shaders/photo.frag) into the bound
-// target, fitted into the viewport (letterboxed on a dark backdrop). Owns the image texture
+// target, filling the viewport (cropped to its aspect, never letterboxed). Owns the image texture
 // (mipmapped, so a large photo shrinks into a small cell without shimmer) and the program.
 #pragma once
 

@@ -14,14 +14,21 @@ float luma(const std::array<float, 3>& c) {
   return kLuma[0] * c[0] + kLuma[1] * c[1] + kLuma[2] * c[2];
 }
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 float clamp01(float v) {
   return std::clamp(v, 0.0f, 1.0f);
 }
+
+// What +-1 of each parameter does: a strong edit a photographer might still keep, not an
+// effect (the session's first grid spans most of the range, and a grid of casts and clipped
+// skies helps nobody choose). The GPU's shaders/photo.frag uses the same numbers.
+// Colour balance: the largest shift of a channel (of [0,1]) in its tone band.
+constexpr float kBalanceShift = 0.12f;
+// Brightness: a gamma curve (mid-grey 0.5 to 0.63 or 0.35 at +-1), which never clips.
+constexpr float kBrightnessLog2Gamma = 0.6f;
+// Contrast: the slope around mid-grey, 2^(0.6 p) (x1.5 or x0.66).
+constexpr float kContrastLog2Slope = 0.6f;
+// Saturation: the chroma factor 1 + 0.5 p (x1.5 or x0.5).
+constexpr float kSaturationRange = 0.5f;
 
 }  // namespace
 
@@ -56,23 +63,32 @@ std::array<float, 12> photo_parameters(const Eigen::VectorXd& x) {
 std::array<float, 3> enhance_pixel(const std::array<float, 3>& rgb,
                                    const std::array<float, 12>& p) {
   std::array<float, 3> c = rgb;
+  // Tone first, colour balance last: a balance applied before a desaturating or flattening
+  // edit shrank with it (at saturation and contrast -100 a colour cast was a fifth as strong),
+  // so one slider's meaning depended on two others and a grid's cells went alike there.
+  const float gamma = std::exp2(-kBrightnessLog2Gamma * p[0]);
+  for (float& v : c) v = std::pow(v, gamma);
+  const float contrast = std::exp2(kContrastLog2Slope * p[1]);
+  for (float& v : c) v = clamp01((v - 0.5f) * contrast + 0.5f);
   const float l = luma(c);
-  const float w_shadow = 1.0f - smoothstep(0.0f, 0.5f, l);
-  const float w_high = smoothstep(0.5f, 1.0f, l);
+  for (float& v : c) v = clamp01(l + (v - l) * (1.0f + kSaturationRange * p[2]));
+  // Tone bands as quadratic Bernstein weights of the luma (they sum to 1): a bright sky at
+  // luma 0.6 is a third highlights. Bands cut at 0.5 by smoothsteps gave it a tenth, and the
+  // highlight sliders barely changed a landscape (4 Delta E over their whole range).
+  const float w_shadow = (1.0f - l) * (1.0f - l);
+  const float w_high = l * l;
   const float w_mid = 1.0f - w_shadow - w_high;
   std::array<float, 3> shift{};
   for (int k = 0; k < 3; ++k) {
-    shift[static_cast<std::size_t>(k)] = 0.25f * (w_shadow * p[static_cast<std::size_t>(3 + k)] +
-                                                  w_mid * p[static_cast<std::size_t>(6 + k)] +
-                                                  w_high * p[static_cast<std::size_t>(9 + k)]);
+    shift[static_cast<std::size_t>(k)] =
+        kBalanceShift *
+        (w_shadow * p[static_cast<std::size_t>(3 + k)] +
+         w_mid * p[static_cast<std::size_t>(6 + k)] + w_high * p[static_cast<std::size_t>(9 + k)]);
   }
-  const float shift_luma = luma(shift);  // balance moves hue, not brightness
+  // Luminosity preserved (Photoshop's default for its colour balance): the balance moves hue,
+  // not brightness, so it stays visible on bright pixels, where a shift upwards would clip.
+  const float shift_luma = luma(shift);
   for (int k = 0; k < 3; ++k) c[k] = clamp01(c[k] + shift[k] - shift_luma);
-  for (float& v : c) v = clamp01(v + 0.3f * p[0]);
-  const float contrast = std::exp2(p[1]);
-  for (float& v : c) v = clamp01((v - 0.5f) * contrast + 0.5f);
-  const float l2 = luma(c);
-  for (float& v : c) v = clamp01(l2 + (v - l2) * (1.0f + p[2]));
   return c;
 }
 

@@ -70,7 +70,11 @@ Image shrink(const Image& in, int max_edge) {
 }  // namespace
 
 PhotoSpace::PhotoSpace(Image image, std::string source)
-    : image_(std::move(image)), texture_(shrink(image_, 2048)), source_(std::move(source)) {}
+    : image_(std::move(image)),
+      texture_(shrink(image_, 2048)),
+      source_(std::move(source)),
+      distance_(std::make_shared<const PhotoDistance>(image_)),
+      scale_(distance_->direction_scale()) {}
 
 PhotoSpace::~PhotoSpace() = default;
 
@@ -108,6 +112,25 @@ std::shared_ptr<const app::PreparedCell> PhotoSpace::prepare(const Eigen::Vector
   cell->p = photo_parameters(x);
   cell->has_details = details;  // the parameters are all there is to show
   return cell;
+}
+
+app::PairwiseDistance PhotoSpace::perceptual_distance() const {
+  // The hook holds the distance itself, so a session kept for redo outlives the space.
+  return [distance = distance_](const std::vector<Eigen::VectorXd>& xs) {
+    return distance->pairwise(xs);
+  };
+}
+
+app::ZoomPolicy PhotoSpace::zoom_policy(int /*cell_px*/) const {
+  return photo_zoom_policy();
+}
+
+Eigen::VectorXd PhotoSpace::perceptual_scale() const {
+  return scale_;
+}
+
+sps::Population PhotoSpace::population() const {
+  return photo_population();
 }
 
 std::unique_ptr<app::CellContent> PhotoSpace::make_content() {

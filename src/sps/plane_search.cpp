@@ -197,6 +197,13 @@ void PlaneSearch::set_population(const Population& population) {
   options_.population = population;
 }
 
+void PlaneSearch::set_min_plane_length(double length) {
+  if (!(length >= 0.0 && length <= 1e4)) {
+    throw std::invalid_argument("the smallest plane length must lie in [0, 10000]");
+  }
+  options_.min_plane_length = length;
+}
+
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);

@@ -161,6 +161,9 @@ class PlaneSearch {
   // Sets options().population (empty: none) for the next submissions. Throws
   // std::invalid_argument on wrong sizes, a mean outside [0, 1] or a non-positive SD.
   void set_population(const Population& population);
+  // Sets options().min_plane_length (in the perceptual scale's units) for the next planes.
+  // Throws std::invalid_argument outside [0, 10000].
+  void set_min_plane_length(double length);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most

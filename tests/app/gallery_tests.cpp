@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <random>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@
 #include "render/photo_renderer.hpp"
 #include "spaces/photo_enhancement.hpp"
 #include "spaces/photo_image.hpp"
+#include "spaces/photo_perception.hpp"
 #include "spaces/space_factory.hpp"
 
 namespace fs = std::filesystem;
@@ -202,8 +204,9 @@ TEST_CASE("expert sliders keep the clicks already made on the plane", "[gallery]
   // Use this on a fresh plane, and on one with two zoom clicks made: the clicks become
   // preference data too, and undo gives all of them back.
   const auto use_point_after = [&](int clicks, const char* file) {
-    auto c =
-        std::make_unique<GalleryController>(options(dir.path / file), &spaces::open_space, 0.0);
+    auto o = options(dir.path / file);
+    o.perceptual_zoom = false;  // two clicks that never end the plane early
+    auto c = std::make_unique<GalleryController>(o, &spaces::open_space, 0.0);
     double t = 0.0;
     c->begin_frame(t);
     for (int k = 0; k < clicks; ++k) {
@@ -278,7 +281,7 @@ TEST_CASE("a new search keeps the old session file and switches the space", "[ga
   c.begin_frame(0.1);
   CHECK(c.space().settings().kind == "photo");
   CHECK(c.space().dimensions() == 12);
-  CHECK(c.session().settings().grid_size == 5);  // the paper's grid for photos
+  CHECK(c.session().settings().grid_size == 3);  // cells large enough to compare colours
   CHECK(c.space_generation() != space_generation);
   CHECK(fs::exists(fs::path(session.string() + ".previous")));
   const auto reloaded = app::load_session(session);
@@ -363,6 +366,63 @@ TEST_CASE("the photo shader and the CPU export agree", "[gallery][photo][gl]") {
   CHECK(changed / static_cast<double>(cpu.size()) > 5.0);
 }
 
+namespace {
+
+// The picture a photo cell shows, read back from the GPU (top row first), in CIELAB.
+std::vector<spaces::Lab> rendered_cell_lab(const render::PhotoRenderer& renderer,
+                                           const Eigen::VectorXd& x, int w, int h) {
+  app::CellView view;
+  view.fbo.resize(w, h, 0);
+  view.fbo.begin();
+  renderer.draw(spaces::photo_parameters(x), w, h);
+  view.fbo.end();
+  const auto rgba = view.fbo.read_pixels();
+  std::vector<spaces::Lab> lab;
+  for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
+    lab.push_back(
+        spaces::srgb_to_lab({rgba[i] / 255.0f, rgba[i + 1] / 255.0f, rgba[i + 2] / 255.0f}));
+  }
+  return lab;
+}
+
+}  // namespace
+
+TEST_CASE("the photo space's colour differences are what its rendered cells show",
+          "[gallery][photo][gl]") {
+  // The look-alike measure works on a 40-pixel copy of the picture; a cell is the whole
+  // picture drawn by the shader at the cell's size. Over random pairs of edits the two must
+  // agree: the measure is a model of the renders, validated here against them.
+  render::HeadlessContext context;
+  const spaces::Image image = spaces::default_photo();
+  render::PhotoRenderer renderer(image.width, image.height, image.rgba);
+  const spaces::PhotoDistance distance(image);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.15, 0.85);
+  double worst_ratio = 0.0;
+  for (int pair = 0; pair < 8; ++pair) {
+    Eigen::VectorXd a(12), b(12);
+    for (int i = 0; i < 12; ++i) a[i] = unit(rng), b[i] = unit(rng);
+    // Near pairs (about one JND) as well as far ones: the threshold matters where cells are
+    // close.
+    if (pair % 2 == 1) b = a + 0.2 * (b - a);
+    const auto ra = rendered_cell_lab(renderer, a, 180, 120);
+    const auto rb = rendered_cell_lab(renderer, b, 180, 120);
+    const double rendered = spaces::PhotoDistance::visible_difference(ra, rb);
+    const double rendered_mean = spaces::PhotoDistance::mean_difference(ra, rb);
+    const double model = distance.pairwise({a, b})(0, 1);
+    const double model_mean = distance.to_target({a}, b).front();
+    INFO("pair " << pair << ": visible " << model << " (model) vs " << rendered
+                 << " (rendered cell); mean " << model_mean << " vs " << rendered_mean);
+    // The cells' 8-bit pixels add a rounding noise of a few tenths of a Delta E per pixel,
+    // which the tenth of the pixels that differ most collects: an absolute margin for it.
+    CHECK(model == Approx(rendered).epsilon(0.1).margin(0.4));
+    CHECK(model_mean == Approx(rendered_mean).epsilon(0.1).margin(0.2));
+    worst_ratio = std::max(worst_ratio, std::abs(std::log(model / rendered)));
+  }
+  INFO("worst |log(model / rendered)| " << worst_ratio);
+  CHECK(worst_ratio < 0.25);
+}
+
 TEST_CASE("view and controller in-process: textures the UI drew stay alive across intents",
           "[gallery][gl]") {
   TempDir dir;
@@ -418,7 +478,18 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
     c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
     frame(5);
     CHECK(c.space().settings().kind == "photo");
-    CHECK(frame(6) >= 25);
+    CHECK(frame(6) >= 9);
+    // The user's own picture, dropped: it opens, and the prefs offer it again next launch.
+    spaces::Image small = spaces::default_photo();
+    const fs::path own = dir.path / "own.png";
+    { std::ofstream(own, std::ios::binary) << spaces::encode_image(small, own); }
+    view.open_dropped(c, own.string());
+    t += 5.0;
+    frame(7);
+    frame(8);
+    CHECK(c.space().settings().kind == "photo");
+    CHECK(fs::path(c.space().settings().source).filename() == "own.png");
+    CHECK(fs::path(view.prefs().photo_file).filename() == "own.png");
     view.release_gl();
   }
   ImGui::DestroyContext();
@@ -591,10 +662,13 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
   CHECK(c.session().has_perceptual_distance());
   // Resumed, it is centred on the estimate too from its next plane on.
   CHECK(c.session().search().options().population.mean.size() == c.session().settings().components);
-  // The photo space has no such measure: the paper's fixed zoom.
+  // The photo space has its own, in colour differences: no two cells within one JND.
   c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
   c.begin_frame(0.1);
-  CHECK_FALSE(c.session().has_perceptual_distance());
+  CHECK(c.session().has_perceptual_distance());
+  CHECK(c.session().zoom_policy().look_alike_mm == Approx(spaces::kPhotoDistinctDeltaE));
+  CHECK(c.session().search().options().perceptual_scale.size() == 12);
+  CHECK(c.session().search().options().min_plane_length == Approx(spaces::kPhotoMinPlaneDeltaE));
 }
 
 namespace {
@@ -1010,6 +1084,7 @@ TEST_CASE("a second window on the same session views it read-only and never save
   const fs::path session = dir.path / "s.json";
   auto o = options(session);
   o.resume = app::ResumePolicy::kYes;
+  o.perceptual_zoom = false;  // three clicks on one plane
   GalleryController a(o, &spaces::open_space, 0.0);
   CHECK_FALSE(a.open_elsewhere());
   (void)click_and_settle(a, 0, 0, 0.0);

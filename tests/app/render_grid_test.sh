@@ -35,5 +35,5 @@ assert worst > 0.2, "two cells are identical"
 PYEOF
 }
 check body 3
-check photo 5
+check photo 3
 echo PASS

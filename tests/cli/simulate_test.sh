@@ -96,4 +96,25 @@ out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 -
       --jnd-px 2 --cell-px 210)
 grep -qE "JND 20\.4[0-9]* mm = 2 px in a 210 px cell; look-alikes under 20\.4" <<<"$out" ||
   fail "pixel person title: $out"
+
+# The photo benchmark: the window's 3x3 grids kept 3.5 Delta E apart, a 2.3-JND person, the
+# body benchmark's columns; a named task is one fixed edit for every trial.
+out=$("$bin" simulate --function photo --trials 2 --iterations 3 --quiet --csv "$dir/photo.csv")
+grep -q "on photo (built-in landscape, 12 parameters), user zoom-jnd (3x3, 4 levels, JND 2.3" \
+  <<<"$out" || fail "photo title: $out"
+head -1 "$dir/photo.csv" | grep -q "duplicate_grids" || fail "photo csv has no duplicate_grids"
+awk -F, 'NR > 1 { if ($2 <= 0 || $2 > 60) exit 1 }' "$dir/photo.csv" ||
+  fail "photo gap outside (0, 60] Delta E: $(cat "$dir/photo.csv")"
+named=$("$bin" simulate --function photo --target warmer-brighter --trials 1 --iterations 2 --quiet)
+grep -q "target warmer-brighter" <<<"$named" || fail "named photo target: $named"
+png="$dir/tiny.png"
+printf '\x89PNG\r\n\x1a\n' >"$png"  # a PNG signature and nothing else
+for args in "--target bogus" "--jnd-delta-e -1" "--grid 4" "--user argmax" \
+            "--distinct-delta-e 0" "--image /nonexistent.png" "--image $png" \
+            "--min-plane-delta-e 1000"; do
+  if err=$("$bin" simulate --function photo $args --trials 1 --iterations 1 2>&1); then
+    fail "accepted: --function photo $args"
+  fi
+  grep -qi "error" <<<"$err" || fail "no error message for: --function photo $args"
+done
 echo "ok"

@@ -1,0 +1,146 @@
+// The photo space's colour-difference measure (spaces/photo_perception.hpp) and the photo
+// session it drives: CIEDE2000 against published test data, the two picture measures, the
+// perceptual scale, and a photo session that never shows look-alike cells.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "app/search_benchmark.hpp"
+#include "app/session.hpp"
+#include "spaces/photo_enhancement.hpp"
+#include "spaces/photo_image.hpp"
+#include "spaces/photo_perception.hpp"
+
+namespace {
+
+Eigen::VectorXd no_edit() {
+  return Eigen::VectorXd::Constant(spaces::kPhotoParameters, 0.5);
+}
+
+}  // namespace
+
+TEST_CASE("CIEDE2000 matches Sharma, Wu and Dalal's test data", "[photo]") {
+  // Pairs from the supplementary test data of Sharma, Wu & Dalal (2005), Table 1: chosen to
+  // exercise the hue-angle branches (blue, near-neutral, wrapping around 0/360 degrees) and
+  // the rotation term.
+  struct Pair {
+    spaces::Lab x, y;
+    double expected;
+  };
+  const Pair pairs[] = {
+      {{50.0, 2.6772, -79.7751}, {50.0, 0.0, -82.7485}, 2.0425},
+      {{50.0, 3.1571, -77.2803}, {50.0, 0.0, -82.7485}, 2.8615},
+      {{50.0, 2.8361, -74.0200}, {50.0, 0.0, -82.7485}, 3.4412},
+      {{50.0, 0.0, 0.0}, {50.0, -1.0, 2.0}, 2.3669},
+      {{50.0, 2.5, 0.0}, {73.0, 25.0, -18.0}, 27.1492},
+      {{60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}, 1.2644},
+  };
+  for (const auto& p : pairs) {
+    INFO("Lab " << p.x.l << " " << p.x.a << " " << p.x.b << " vs " << p.y.l << " " << p.y.a << " "
+                << p.y.b);
+    CHECK(spaces::ciede2000(p.x, p.y) == Approx(p.expected).margin(1e-4));
+    CHECK(spaces::ciede2000(p.y, p.x) == Approx(p.expected).margin(1e-4));
+  }
+  CHECK(spaces::ciede2000({40.0, 10.0, -5.0}, {40.0, 10.0, -5.0}) == 0.0);
+}
+
+TEST_CASE("sRGB to CIELAB: white, black and a pure red", "[photo]") {
+  const spaces::Lab white = spaces::srgb_to_lab({1.0f, 1.0f, 1.0f});
+  CHECK(white.l == Approx(100.0).margin(0.01));
+  CHECK(std::abs(white.a) < 0.01);
+  CHECK(std::abs(white.b) < 0.01);
+  const spaces::Lab black = spaces::srgb_to_lab({0.0f, 0.0f, 0.0f});
+  CHECK(black.l == Approx(0.0).margin(0.01));
+  // sRGB red is L* 53.24, a* 80.09, b* 67.20 (D65).
+  const spaces::Lab red = spaces::srgb_to_lab({1.0f, 0.0f, 0.0f});
+  CHECK(red.l == Approx(53.24).margin(0.05));
+  CHECK(red.a == Approx(80.09).margin(0.1));
+  CHECK(red.b == Approx(67.20).margin(0.1));
+}
+
+TEST_CASE("the photo distance: zero for equal edits, the visible difference above the mean",
+          "[photo]") {
+  const spaces::PhotoDistance distance(spaces::default_photo());
+  REQUIRE(distance.pixels() > 500);
+  REQUIRE(distance.pixels() <= 40 * 40);
+  Eigen::VectorXd warm = no_edit();
+  warm[6] = 0.8;   // midtones towards red
+  warm[8] = 0.25;  // and towards yellow
+  Eigen::VectorXd highlights = no_edit();
+  highlights[11] = 0.9;  // highlights towards blue: only the bright pixels change
+  const Eigen::MatrixXd d = distance.pairwise({no_edit(), warm, highlights});
+  CHECK(d(0, 0) == 0.0);
+  CHECK(d(0, 1) == Approx(d(1, 0)));
+  CHECK(d(0, 1) > spaces::kPhotoJndDeltaE);
+  const auto a = distance.lab_of(no_edit());
+  const auto b = distance.lab_of(highlights);
+  const double mean = spaces::PhotoDistance::mean_difference(a, b);
+  const double visible = spaces::PhotoDistance::visible_difference(a, b);
+  INFO("highlights edit: mean " << mean << ", visible " << visible);
+  CHECK(visible == Approx(d(0, 2)));
+  // Confined to part of the picture, the edit is far more visible where it is than on average.
+  CHECK(visible > 1.5 * mean);
+  CHECK(distance.to_target({warm}, warm).front() == Approx(0.0).margin(1e-12));
+}
+
+TEST_CASE("every photo parameter changes the picture visibly over its range, within reason",
+          "[photo]") {
+  const spaces::PhotoDistance distance(spaces::default_photo());
+  const Eigen::VectorXd scale = distance.direction_scale();
+  REQUIRE(scale.size() == spaces::kPhotoParameters);
+  for (int i = 0; i < spaces::kPhotoParameters; ++i) {
+    INFO(spaces::photo_parameter_name(i) << ": " << scale[i] << " Delta E over its range");
+    // Visible (several JNDs) but not an effect: the strongest edit of one slider stays under
+    // what turns a landscape into another picture.
+    CHECK(scale[i] > 3.0 * spaces::kPhotoJndDeltaE);
+    CHECK(scale[i] < 40.0);
+  }
+}
+
+TEST_CASE("a photo session with the colour-difference hook shows no cells closer than 3.5",
+          "[photo][session]") {
+  const spaces::PhotoDistance distance(spaces::default_photo());
+  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
+    return distance.pairwise(xs);
+  };
+  app::SessionSettings settings;
+  settings.space = "photo";
+  settings.components = spaces::kPhotoParameters;
+  settings.grid_size = 3;  // the window's photo grid
+  sps::SearchOptions options;
+  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
+  int grids = 0;
+  int look_alike_grids = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    settings.seed = seed;
+    app::Session session(settings, options);
+    session.set_perceptual_scale(distance.direction_scale());
+    session.set_population(spaces::photo_population());
+    session.set_perceptual_distance(pairwise, spaces::photo_zoom_policy());
+    Eigen::VectorXd target = no_edit();
+    target[0] = 0.7;
+    target[6] = 0.65;
+    target[8] = 0.3;
+    const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+      return distance.to_target(xs, target);
+    };
+    std::mt19937_64 rng(seed);
+    double first = 0.0;
+    double best = 1e9;
+    for (int plane = 0; plane < 4; ++plane) {
+      const app::PlaneOutcome outcome = app::play_plane_jnd(
+          session, to_target, pairwise, spaces::kPhotoJndDeltaE, rng, spaces::kPhotoDistinctDeltaE);
+      grids += outcome.grids;
+      look_alike_grids += outcome.look_alike_grids;
+      const double gap = to_target({outcome.chosen}).front();
+      if (plane == 0) first = distance.to_target({session.start_point()}, target).front();
+      best = std::min(best, gap);
+    }
+    INFO("seed " << seed << ": start " << first << ", best after 4 planes " << best);
+    CHECK(best < first);
+  }
+  INFO(look_alike_grids << " of " << grids << " grids held look-alike cells");
+  CHECK(grids >= 12);
+  CHECK(look_alike_grids == 0);
+}
