@@ -266,19 +266,7 @@ int run_body_simulation(const ArgParser& args) {
       if (target_model) session.set_population(spaces::body_population(k));
     }
     if (adapt) session.set_perceptual_distance(pairwise, policy);
-    std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
-    double best = std::numeric_limits<double>::infinity();
-    for (int it = 0; it < iterations; ++it) {
-      const app::PlaneOutcome plane =
-          app::play_plane_jnd(session, to_target, pairwise, jnd_mm, user_rng, clone_mm);
-      best = std::min(best, to_target({plane.chosen}).front());
-      const auto i = static_cast<std::size_t>(it);
-      results.gaps[i].push_back(best);
-      results.seconds[i].push_back(plane.optimizer_seconds);
-      results.look_alike_grids[i].push_back(plane.look_alike_grids);
-      results.grids[i].push_back(plane.grids);
-      results.pinned[i].push_back(app::pinned_fraction(session.current_best()));
-    }
+    play_trial(session, to_target, pairwise, jnd_mm, clone_mm, trial_seed, results);
     if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
   }
   if (!quiet) std::cerr << "\n";

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/search_benchmark.hpp"
+#include "app/session.hpp"
 #include "cli/arg_parser.hpp"
 #include "sps/plane_search.hpp"
 
@@ -30,6 +32,14 @@ struct SimulationResults {
   explicit SimulationResults(int iterations, int seed, bool body);
   bool body() const { return !pinned.empty(); }
 };
+
+// One trial of the body or photo benchmark: the simulated person (app::play_plane_jnd, its
+// own random stream from `trial_seed`) plays `results`' iterations on `session`, each plane
+// recorded as the best gap so far, the optimizer's time, the grids and look-alike grids shown
+// (closer than `clone` by `look_alikes`) and the pinned fraction of the current best.
+void play_trial(app::Session& session, const app::TargetDistance& to_target,
+                const app::PairwiseDistance& look_alikes, double jnd, double clone,
+                std::uint64_t trial_seed, SimulationResults& results);
 
 // Prints the table (after `title`) and writes --csv / --per-trial-csv when asked.
 void write_simulation_results(const ArgParser& args, const std::string& title,
