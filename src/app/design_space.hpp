@@ -131,10 +131,13 @@ class DesignSpace {
     return {};
   }
   virtual Eigen::VectorXd perceptual_scale() const { return {}; }
-  // With perceptual_scale(): the smallest length of a plane's sides in its units, so that a
-  // grid of this space's size can hold cells that all look different; 0 keeps the
-  // optimizer's default (sps::SearchOptions::min_plane_length).
-  virtual double min_plane_length() const { return 0.0; }
+  // With perceptual_scale(): the smallest length of a plane's sides in its units when the
+  // cells are `cell_px` pixels high (0: not known yet), so that a grid can hold cells that all
+  // look different; 0 keeps the optimizer's default (sps::SearchOptions::min_plane_length).
+  virtual double min_plane_length(int cell_px) const {
+    (void)cell_px;
+    return 0.0;
+  }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const { return {}; }

@@ -242,6 +242,11 @@ void GalleryController::apply(const Intent& i) {
             if (p.pixels == cell_pixels_ || p.pixels < 1) return;
             cell_pixels_ = p.pixels;
             session_->set_zoom_policy(space_->zoom_policy(cell_pixels_));
+            // From the next plane on, as the zoom policy: the grid on screen stays.
+            const double length = space_->min_plane_length(cell_pixels_);
+            if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
+              session_->set_min_plane_length(length);
+            }
           },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
@@ -517,8 +522,8 @@ void GalleryController::install_perception() {
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
       session_->set_perceptual_scale(scale);
-      if (space_->min_plane_length() > 0.0) {
-        session_->set_min_plane_length(space_->min_plane_length());
+      if (space_->min_plane_length(cell_pixels_) > 0.0) {
+        session_->set_min_plane_length(space_->min_plane_length(cell_pixels_));
       }
     }
   }

@@ -24,8 +24,10 @@ const std::vector<ExportPreset>& export_presets() {
            RestPose::model, MorphEncoding::split_signed, JointNaming::model),
       make("unity", ".glb", "T-pose, humanoid bone names (hips, leftUpperArm, ...), +-3 sigma",
            RestPose::t, MorphEncoding::split_signed, JointNaming::humanoid),
-      make("unreal", ".glb", "T-pose (retargeting base pose), humanoid bone names, +-3 sigma",
-           RestPose::t, MorphEncoding::split_signed, JointNaming::humanoid),
+      make("unreal", ".glb",
+           "T-pose (retargeting base pose), UE5 mannequin bone names (pelvis, thigh_l, ...), "
+           "+-3 sigma",
+           RestPose::t, MorphEncoding::split_signed, JointNaming::unreal),
       make("threejs", ".glb", "model's own rest pose, one target per component (w = d beta)",
            RestPose::model, MorphEncoding::betas, JointNaming::model),
       make("vrm", ".vrm", "VRM 1.0 avatar: T-pose, VRMC_vrm humanoid map and meta, +-3 sigma",

@@ -450,10 +450,14 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
                     : "joint_" + std::to_string(j);
   }
   std::vector<std::string> node_names = names;
-  if (options.joint_naming == JointNaming::humanoid) {
+  if (options.joint_naming != JointNaming::model) {
+    // Every SMPL-family joint gets a name of the engine's style (a model with other joint
+    // names keeps those it has no mapping for).
     for (std::size_t j = 0; j < names.size(); ++j) {
-      const std::string role = vrm_humanoid_bone(names[j]);
-      if (!role.empty()) node_names[j] = role;
+      const std::string engine = options.joint_naming == JointNaming::humanoid
+                                     ? humanoid_bone_name(names[j])
+                                     : unreal_bone_name(names[j]);
+      if (!engine.empty()) node_names[j] = engine;
     }
   }
   const std::vector<Eigen::Matrix3f> frames = bone_frames(model.parents, names, joints);

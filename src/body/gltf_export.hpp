@@ -48,8 +48,10 @@ enum class RestPose {
 // Bone names in the file.
 enum class JointNaming {
   model,     // the model's names (SMPL-family names built in, body/joint_names.hpp)
-  humanoid,  // VRM humanoid names where a joint has a humanoid role ("leftUpperArm"), which
-             // Unity's Humanoid avatar and most retargeting tools map automatically
+  humanoid,  // VRM humanoid names ("leftUpperArm"; body::humanoid_bone_name), which Unity's
+             // Humanoid avatar and most retargeting tools map automatically
+  unreal,    // the UE5 mannequin's names ("thigh_l"; body::unreal_bone_name), which Unreal's
+             // IK Retargeter maps to its mannequin
 };
 
 // VRM 1.0 `meta` (VRMC_vrm). Defaults: a personal, non-profit licence that allows nothing

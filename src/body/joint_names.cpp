@@ -108,4 +108,36 @@ std::string vrm_humanoid_bone(const std::string& joint_name) {
   return it == table.end() ? std::string() : it->second;
 }
 
+std::string humanoid_bone_name(const std::string& joint_name) {
+  if (std::string role = vrm_humanoid_bone(joint_name); !role.empty()) return role;
+  if (joint_name == "left_hand") return "leftHandEnd";
+  if (joint_name == "right_hand") return "rightHandEnd";
+  return {};
+}
+
+std::string unreal_bone_name(const std::string& joint_name) {
+  static const std::map<std::string, std::string> table = [] {
+    std::map<std::string, std::string> t = {
+        {"pelvis", "pelvis"},   {"spine1", "spine_01"},       {"spine2", "spine_02"},
+        {"spine3", "spine_03"}, {"neck", "neck_01"},          {"head", "head"},
+        {"jaw", "jaw"},         {"left_eye_smplhf", "eye_l"}, {"right_eye_smplhf", "eye_r"}};
+    const std::pair<const char*, const char*> sided[] = {
+        {"hip", "thigh"},         {"knee", "calf"},         {"ankle", "foot"},
+        {"foot", "ball"},         {"collar", "clavicle"},   {"shoulder", "upperarm"},
+        {"elbow", "lowerarm"},    {"wrist", "hand"},        {"hand", "hand_end"},
+        {"index1", "index_01"},   {"index2", "index_02"},   {"index3", "index_03"},
+        {"middle1", "middle_01"}, {"middle2", "middle_02"}, {"middle3", "middle_03"},
+        {"ring1", "ring_01"},     {"ring2", "ring_02"},     {"ring3", "ring_03"},
+        {"pinky1", "pinky_01"},   {"pinky2", "pinky_02"},   {"pinky3", "pinky_03"},
+        {"thumb1", "thumb_01"},   {"thumb2", "thumb_02"},   {"thumb3", "thumb_03"}};
+    for (const auto& [smpl, ue] : sided) {
+      t[std::string("left_") + smpl] = std::string(ue) + "_l";
+      t[std::string("right_") + smpl] = std::string(ue) + "_r";
+    }
+    return t;
+  }();
+  const auto it = table.find(joint_name);
+  return it == table.end() ? std::string() : it->second;
+}
+
 }  // namespace body

@@ -50,7 +50,7 @@ void print_help() {
          "                                 [--target NAME=VALUE ...]\n"
          "                                 [--preset NAME] [--rest-pose a|t]\n"
          "                                 [--no-morph | --morph-betas] [--joint-names "
-         "model|humanoid]\n"
+         "model|humanoid|unreal]\n"
          "                                 [--vrm-... meta options] -o OUT.glb|OUT.gltf|OUT.vrm\n\n"
          "--target (repeatable): e.g. height=1.80 mass=85 (or 180cm, 187lb): the body nearest\n"
          "to the given shape that meets them (names: see `measure --help`).\n\n"
@@ -68,7 +68,8 @@ void print_help() {
          "--rest-pose a   the model's own rest pose (A-pose for the default model; default)\n"
          "--rest-pose t   T-pose: arms horizontal, posed by the model's own skinning with its\n"
          "                pose correctives when the file has posedirs (always for .vrm)\n"
-         "--joint-names humanoid  bones named as VRM humanoid bones (hips, leftUpperArm, ...)\n\n"
+         "--joint-names humanoid  bones named as VRM humanoid bones (hips, leftUpperArm, ...)\n"
+         "--joint-names unreal    bones named as the UE5 mannequin's (pelvis, thigh_l, ...)\n\n"
          "Presets (other options given with --preset override its choices):\n";
   for (const auto& p : body::export_presets()) {
     std::cout << "  " << p.name << std::string(9 - std::min<std::size_t>(8, p.name.size()), ' ')
@@ -150,9 +151,11 @@ int run(int argc_in, char** argv_in) {
     }
   }
   if (args.has("joint-names")) {
-    options.joint_naming = choice(args, "joint-names", {"model", "humanoid"}, "model") == "humanoid"
-                               ? body::JointNaming::humanoid
-                               : body::JointNaming::model;
+    const std::string naming =
+        choice(args, "joint-names", {"model", "humanoid", "unreal"}, "model");
+    options.joint_naming = naming == "humanoid" ? body::JointNaming::humanoid
+                           : naming == "unreal" ? body::JointNaming::unreal
+                                                : body::JointNaming::model;
   }
   if (args.has("no-morph")) options.morph_targets = false;
   if (args.has("morph-betas")) options.morph_encoding = body::MorphEncoding::betas;

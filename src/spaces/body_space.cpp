@@ -111,6 +111,14 @@ app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
   return cell_px > 0 ? app::zoom_policy_for_cells(cell_px) : app::ZoomPolicy{};
 }
 
+double BodySpace::min_plane_length(int cell_px) const {
+  // A plane shorter than what a pixel-limited person sees shows look-alike cells however its
+  // first grid is widened (the benchmark's pixel person has the same rule): at 210 px, 20 mm.
+  return cell_px > 0 ? std::max(sps::SearchOptions{}.min_plane_length,
+                                app::look_alike_mm(cell_px, app::kDefaultJndPx))
+                     : 0.0;
+}
+
 Eigen::VectorXd BodySpace::perceptual_scale() const {
   return distance_->direction_rms_mm();
 }

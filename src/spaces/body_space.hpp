@@ -65,6 +65,7 @@ class BodySpace : public app::DesignSpace {
 
   app::PairwiseDistance perceptual_distance() const override;
   app::ZoomPolicy zoom_policy(int cell_px) const override;
+  double min_plane_length(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   sps::Population population() const override;
 

@@ -47,7 +47,7 @@ class PhotoSpace : public app::DesignSpace {
   app::PairwiseDistance perceptual_distance() const override;
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
-  double min_plane_length() const override { return kPhotoMinPlaneDeltaE; }
+  double min_plane_length(int /*cell_px*/) const override { return kPhotoMinPlaneDeltaE; }
   sps::Population population() const override;
   std::string default_export_name() const override { return "photo.png"; }
   std::string export_hint() const override { return ".png or .jpg, plus a .json of parameters"; }

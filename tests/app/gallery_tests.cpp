@@ -1533,6 +1533,8 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   const double at_default = c.session().zoom_policy().distinct_mm;
   CHECK(at_default == Approx(app::look_alike_mm(app::kDefaultCellPx)));
   CHECK(at_default == Approx(20.4).margin(0.2));
+  // The planes to come are at least that long, as the benchmark's pixel person has them.
+  CHECK(c.session().search().options().min_plane_length == Approx(at_default));
   // Every grid of a plane clicked through at that size shows nine cells that differ by at
   // least that much, pairwise (or the plane ends early, the click being the choice).
   const auto distance = c.space().perceptual_distance();

@@ -57,6 +57,9 @@ grep -q '"VRMC_vrm"' "$dir/avatar.vrm" || fail "avatar.vrm has no VRMC_vrm"
 grep -q '"authors":\["A","B"\]' "$dir/avatar.vrm" || fail "avatar.vrm: authors not set"
 "$exe" export --betas 0.5 --preset unity -o "$dir/unity.glb" >/dev/null
 grep -q '"leftUpperArm"' "$dir/unity.glb" || fail "--preset unity: no humanoid bone names"
+"$exe" export --betas 0.5 --preset unreal -o "$dir/unreal.glb" >/dev/null
+grep -q '"upperarm_l"' "$dir/unreal.glb" || fail "--preset unreal: no UE5 mannequin bone names"
+if grep -q '"leftUpperArm"' "$dir/unreal.glb"; then fail "--preset unreal: humanoid names"; fi
 "$writer" "$dir/smpl.npz" smpl  # SMPL look-alike with posedirs (207 columns)
 "$exe" export --model "$dir/smpl.npz" --rest-pose t -o "$dir/smpl_t.gltf" >/dev/null
 grep -q "T (model's skinning and pose correctives)" "$dir/smpl_t.gltf" ||
@@ -64,7 +67,8 @@ grep -q "T (model's skinning and pose correctives)" "$dir/smpl_t.gltf" ||
 "$exe" export --model "$dir/cyl.npz" --rest-pose t -o "$dir/cyl_t.gltf" >/dev/null
 grep -q "T (model's skinning, no pose correctives)" "$dir/cyl_t.gltf" ||
   fail "--rest-pose t without posedirs: extras do not say so"
-node "$validator" "$dir/t.glb" "$dir/avatar.vrm" "$dir/unity.glb" "$dir/smpl_t.gltf"
+node "$validator" "$dir/t.glb" "$dir/avatar.vrm" "$dir/unity.glb" "$dir/unreal.glb" \
+  "$dir/smpl_t.gltf"
 
 echo "== errors"
 if out=$("$exe" export --model "$dir/cyl.npz" --components 16 -o "$dir/x.glb" 2>&1); then

@@ -18,6 +18,7 @@
 #include "body/bone_frames.hpp"
 #include "body/export_presets.hpp"
 #include "body/gltf_export.hpp"
+#include "body/joint_names.hpp"
 #include "body/model_loader.hpp"
 #include "body/posing.hpp"
 #include "npz_fixtures.hpp"
@@ -738,5 +739,32 @@ TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
   const auto doc = read_back(path);
   CHECK(joint_node(doc, 0).name == "hips");
   CHECK(joint_node(doc, 16).name == "leftUpperArm");
-  CHECK(joint_node(doc, 22).name == "left_hand");  // no humanoid role: the model's name
+  // No humanoid role, named in the same style: no SMPL name among the humanoid ones.
+  CHECK(joint_node(doc, 22).name == "leftHandEnd");
+  for (int j = 0; j < 24; ++j) {
+    INFO("joint " << j << ": " << joint_node(doc, j).name);
+    CHECK(joint_node(doc, j).name.find('_') == std::string::npos);
+  }
+  // Unreal: the UE5 mannequin's names, one style throughout.
+  CHECK(body::find_export_preset("unreal")->options.joint_naming == body::JointNaming::unreal);
+  const auto unreal_path = fixtures::scratch_dir("gltf-presets") / "unreal.glb";
+  body::export_gltf(model, some_betas(10), unreal_path,
+                    body::find_export_preset("unreal")->options);
+  const auto ue = read_back(unreal_path);
+  const std::pair<int, const char*> expected[] = {
+      {0, "pelvis"},      {1, "thigh_l"},     {2, "thigh_r"},  {3, "spine_01"},    {4, "calf_l"},
+      {7, "foot_l"},      {10, "ball_l"},     {12, "neck_01"}, {13, "clavicle_l"}, {15, "head"},
+      {16, "upperarm_l"}, {19, "lowerarm_r"}, {20, "hand_l"},  {23, "hand_end_r"}};
+  for (const auto& [j, name] : expected) CHECK(joint_node(ue, j).name == name);
+  // Every SMPL-family joint has a name in each engine style, the fingers, jaw and eyes too.
+  for (const auto* names : {body::builtin_joint_names(24), body::builtin_joint_names(55)}) {
+    REQUIRE(names != nullptr);
+    for (const auto& n : *names) {
+      INFO(n);
+      CHECK_FALSE(body::humanoid_bone_name(n).empty());
+      CHECK_FALSE(body::unreal_bone_name(n).empty());
+    }
+  }
+  CHECK(body::unreal_bone_name("left_index1") == "index_01_l");
+  CHECK(body::unreal_bone_name("right_thumb3") == "thumb_03_r");
 }

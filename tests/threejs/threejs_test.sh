@@ -30,7 +30,10 @@ check blender.glb 20 --preset blender
 check threejs.glb 10 --preset threejs
 "$exe" export --betas $betas --preset unity -o "$dir/unity.glb" >/dev/null
 node "$here/check_export.mjs" "$dir/unity.glb" --joints 24 --targets 20 --height "$height" \
-  --bone hips --bone leftUpperArm --bone left_hand
+  --bone hips --bone leftUpperArm --bone leftHandEnd
+"$exe" export --betas $betas --preset unreal -o "$dir/unreal.glb" >/dev/null
+node "$here/check_export.mjs" "$dir/unreal.glb" --joints 24 --targets 20 --height "$height" \
+  --bone pelvis --bone spine_01 --bone thigh_l --bone calf_r --bone upperarm_l --bone hand_r
 "$exe" export --betas $betas --preset vrm -o "$dir/avatar.vrm" >/dev/null
 node "$here/check_export.mjs" "$dir/avatar.vrm" --vrm --joints 24 --targets 20 --height "$height"
 
@@ -46,4 +49,8 @@ for family in smplh smplx; do
 done
 node "$here/check_export.mjs" "$dir/smplx.vrm" --vrm --no-geometry --bone jaw --bone left_eye_smplhf \
   --target shape_09_neg --target expr_02
+# The UE5 mannequin's finger names on SMPL-X's 55 joints.
+"$exe" export --model "$dir/smplx.npz" --preset unreal -o "$dir/smplx_unreal.glb" >/dev/null
+node "$here/check_export.mjs" "$dir/smplx_unreal.glb" --no-geometry --joints 55 \
+  --bone index_01_l --bone thumb_03_r --bone jaw --bone eye_l
 echo "threejs_export: all checks passed"
