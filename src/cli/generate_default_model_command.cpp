@@ -103,7 +103,8 @@ int run(int argc, char** argv) {
   if (args.has("help")) {
     std::cout
         << "usage: sequential-gallery generate-default-model [--output-dir DIR] [--check]\n"
-           "          [--population N] [--components K] [--seed S] [--quiet]\n\n"
+           "          [--population N] [--components K] [--seed S] [--quiet]\n"
+           "          [--calibration-rounds R] [--calibration-sample N]\n\n"
            "Builds the default body models female, male and neutral: one template mannequin\n"
            "(implicit surface, marching tetrahedra, remeshing) with SMPL's 24-joint rig, a\n"
            "population per sex from ANSUR II survey statistics, and the PCA shape space of\n"
@@ -112,14 +113,21 @@ int run(int argc, char** argv) {
            "with the existing files instead (every array within 1e-5; exit 1 if not).\n";
     return 0;
   }
-  args.reject_unknown({"output-dir", "check", "population", "components", "seed", "quiet"});
+  args.reject_unknown({"output-dir", "check", "population", "components", "seed", "quiet",
+                       "calibration-rounds", "calibration-sample"});
   default_model::GeneratorOptions options;
   options.population = args.get_int("population", options.population);
   options.components = args.get_int("components", options.components);
+  options.calibration_rounds = args.get_int("calibration-rounds", options.calibration_rounds);
+  options.calibration_sample = args.get_int("calibration-sample", options.calibration_sample);
   options.seed =
       static_cast<std::uint64_t>(std::stoull(args.get_or("seed", std::to_string(options.seed))));
   if (options.population < 20 || options.components < 1)
     throw cli::ArgError("--population must be >= 20 and --components >= 1");
+  if (options.calibration_rounds < 0 || options.calibration_rounds > 20 ||
+      options.calibration_sample < 100 || options.calibration_sample > options.population)
+    throw cli::ArgError(
+        "--calibration-rounds must be 0-20 and --calibration-sample 100 to the population");
   const std::string dir = args.get_or("output-dir", "assets");
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -128,6 +136,7 @@ int run(int argc, char** argv) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%zu models, %.1f s\n", models.size(), seconds);
+  std::printf("%s\n", models.back().calibration.c_str());
   int stale = 0;
   for (const auto& model : models) {
     const std::string path = dir + "/body_" + model.name + ".npz";

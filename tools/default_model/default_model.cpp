@@ -9,6 +9,7 @@
 #include "pca.hpp"
 #include "population.hpp"
 #include "rig.hpp"
+#include "survey_calibration.hpp"
 
 namespace default_model {
 
@@ -97,9 +98,13 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   DeformationModel deformation(mesh.vertices, smoothed_normals(mesh, 8), skeleton, deform_weights);
   deformation.smooth_fields(vertex_neighbours(mesh), 36);
   const int P = deformation.parameter_count();
+  std::vector<CalibrationReport> calibration;
   auto thetas = [&](bool female) {
-    const std::vector<Anthropometry> people =
+    std::vector<Anthropometry> people =
         sample_population(female, options.population, options.seed + (female ? 0 : 1));
+    calibration.push_back(calibrate_population(people, deformation, mesh.faces, tpl.regressor,
+                                               options.calibration_sample,
+                                               options.calibration_rounds, options.threads));
     Eigen::MatrixXd theta(options.population, P);
     for (int i = 0; i < options.population; ++i)
       theta.row(i) = deformation.parameters(people[i]).transpose();
@@ -112,6 +117,12 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   out.push_back(build_model("female", tpl, deformation, female, options.components));
   out.push_back(build_model("male", tpl, deformation, male, options.components));
   out.push_back(build_model("neutral", tpl, deformation, both, options.components));
+  out[0].calibration_reports = {calibration[0]};
+  out[1].calibration_reports = {calibration[1]};
+  out[2].calibration_reports = calibration;
+  for (GeneratedModel& m : out)
+    for (const CalibrationReport& r : m.calibration_reports)
+      m.calibration += (m.calibration.empty() ? "" : "\n") + describe(r);
   return out;
 }
 

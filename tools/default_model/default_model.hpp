@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "survey_calibration.hpp"
+
 namespace default_model {
 
 struct GeneratorOptions {
@@ -17,11 +19,17 @@ struct GeneratorOptions {
   int components = 16;
   std::uint64_t seed = 20200724;  // fixed: the committed asset depends on it
   double grid_spacing = 0.006;    // marching tetrahedra grid, metres
-  int threads = 2;                // grid evaluation only; the result does not depend on it
+  int threads = 2;                // grid and calibration; the result does not depend on it
+  // Bodies of each sex measured per calibration round, and the rounds (survey_calibration.hpp).
+  int calibration_sample = 240;
+  int calibration_rounds = 3;
 };
 
 struct GeneratedModel {
   std::string name;  // "female", "male" or "neutral"
+  // How far the population's girths are from their draw, per sex (neutral: both).
+  std::vector<CalibrationReport> calibration_reports;
+  std::string calibration;                                              // the same, as text
   Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> v_template;  // V x 3 (population mean)
   Eigen::Matrix<std::uint32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces;  // F x 3
   Eigen::MatrixXf shapedirs;       // 3V x K (row 3v + axis), betas ~ N(0, 1)

@@ -92,7 +92,7 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     // triangular) is held to a narrower range than the other measures, so that no body along
     // a single component at +-3, nor far combinations of several, falls below 1.45 m.
     for (int k = 0; k < kSurveyMeasures; ++k)
-      z[k] = normal.truncated(k == k_stature ? kStatureTruncation * truncate_survey / 1.8
+      z[k] = normal.truncated(k == k_stature ? kStatureTruncation * truncate_survey / 2.3
                                              : truncate_survey);
     z = L * z;
     for (int k = 0; k < kSurveyMeasures; ++k) a.m[k] = t.mean[k] + t.sd[k] * z[k];
@@ -116,6 +116,21 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     people.push_back(a);
   }
   return people;
+}
+
+Eigen::VectorXd person_features(const Anthropometry& a) {
+  const SurveyTable& t = a.female ? kFemale : kMale;
+  Eigen::VectorXd phi(kPersonFeatures);
+  phi[0] = 1.0;
+  for (int k = 0; k < kSurveyMeasures; ++k) phi[1 + k] = (a.m[k] - t.mean[k]) / t.sd[k];
+  const IndependentFactors& f = a.f;
+  const double factors[] = {
+      f.fat_distribution, f.fat_layer,         f.muscle,         f.bust,
+      f.shoulder_slope,   f.posture,           f.lordosis,       f.head_forward,
+      f.neck_length,      f.shoulders_forward, f.knee_alignment, f.limb_fat};
+  static_assert(sizeof(factors) / sizeof(factors[0]) == kPersonFeatures - 1 - kSurveyMeasures);
+  for (int k = 0; k < 12; ++k) phi[1 + kSurveyMeasures + k] = factors[k] / kFactorScale;
+  return phi;
 }
 
 Anthropometry reference_person() {
@@ -142,6 +157,16 @@ enum Field : int {
   kKneeAlignment,
   kLimbFat,
   kThighTop,
+  // Girth bands, one per CrossSectionKnob and in its order: soft tissue round the level at
+  // which the tool measures each girth, each a person's own calibration (metres at a thigh's
+  // radius). Local, so that each steers its own girth and hardly the others.
+  kChestBand,
+  kWaistBand,
+  kHipBand,
+  kNeckBand,
+  kThighBand,
+  kCalfBand,
+  kUpperArmBand,
   kFieldCount
 };
 constexpr int kAnchor = 0;
@@ -334,6 +359,58 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     // The top of the thighs, fading out towards the knees and into the buttocks and crotch.
     // (Below the crotch only legs and hands are at these heights; the hands are left out.)
     set_field(kThighTop, (1.0 - arm) * crotch_core * gauss(p.y(), 0.78, 0.045) * n);
+    // The girth bands at the template's measuring levels (src/body/measurements.hpp: chest the
+    // largest girth in 0.65-0.75 H, waist the smallest in 0.56-0.67 H, hips the largest below
+    // it, neck at 30-70% of neck -> head, thigh 1% of H below the crotch, calf the largest at
+    // 20-50% of knee -> ankle, upper arm at 40-60% of shoulder -> elbow), wide enough to cover
+    // where those levels fall on other bodies.
+    {
+      const double trunk = std::max(0.0, 1.0 - arm - head - extremity);
+      // The offset from one bone's axis, in units of a thigh's radius.
+      auto from_axis = [&](int bone) {
+        const Vec3 a = skeleton.bone_start[bone], ab = skeleton.bone_end[bone] - a;
+        const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        const Vec3 d = p - (a + t * ab);
+        const double r = d.norm();
+        return r > 1e-9 ? Vec3(d / r * std::min(r, kLayerCap) / kLayerRadius) : Vec3(n);
+      };
+      // Less on the inner thighs, where the thighs meet when both grow.
+      const double medial = smoothstep(0.0, 0.7, -(p.x() >= 0 ? 1.0 : -1.0) * n.x());
+      const double legs = w(kLeftHip) + w(kRightHip) + w(kLeftKnee) + w(kRightKnee) +
+                          w(kLeftAnkle) + w(kRightAnkle);
+      set_field(kChestBand, trunk * gauss(p.y(), 1.23, 0.05) * radial);
+      // The waist is the smallest girth of its range: a band narrower than the range moves
+      // the smallest girth out of the band instead of widening it.
+      set_field(kWaistBand, trunk * smoothstep(0.84, 0.98, p.y()) *
+                                (1.0 - smoothstep(1.10, 1.22, p.y())) * radial);
+      set_field(kHipBand, trunk * (1.0 - 0.7 * medial * (1.0 - smoothstep(0.80, 0.86, p.y()))) *
+                              gauss(p.y(), 0.87, 0.065) * radial);
+      const double neck_mid = 0.5 * (J[kNeck].y() + J[kHead].y());
+      // Not the head, and less under the chin: pushed along the radial direction, the lips
+      // and the crease between chin and throat fold. A thick neck grows at the sides and the
+      // back (sternocleidomastoids, trapezius).
+      const double under_chin = front * smoothstep(neck_mid - 0.035, neck_mid, p.y());
+      set_field(kNeckBand, (1.0 - arm) * (1.0 - head) * (1.0 - 0.8 * under_chin) *
+                               (w(kNeck) + w(kSpine3)) * gauss(p.y(), neck_mid, 0.03) * radial);
+      // Tapering from the furrow towards the knee (a narrow band raised far shows as a ring),
+      // gone above it (the knee pit folds).
+      // Away from the thigh bone's own axis, not faded at the crotch as the other soft-tissue
+      // fields are: the thigh is measured just below it, and a band faded there would have
+      // to be raised far, ballooning the thigh below.
+      // Rising from the knee to the furrow and on into the buttocks, as a full thigh tapers:
+      // a band round the furrow alone shows as a ring when raised.
+      const double thigh_profile = smoothstep(0.50, 0.78, p.y());
+      set_field(kThighBand, legs * (1.0 - 0.8 * medial) * thigh_profile *
+                                from_axis(p.x() >= 0 ? kLeftHip : kRightHip));
+      const double calf_y = J[kLeftKnee].y() - 0.35 * (J[kLeftKnee].y() - J[kLeftAnkle].y());
+      set_field(kCalfBand, above_feet * legs * gauss(p.y(), calf_y, 0.06) *
+                               from_axis(p.x() >= 0 ? kLeftKnee : kRightKnee));
+      const int shoulder = p.x() >= 0 ? kLeftShoulder : kRightShoulder;
+      const Vec3 s0 = skeleton.bone_start[shoulder], s1 = skeleton.bone_end[shoulder];
+      const double along = (p - s0).dot(s1 - s0) / (s1 - s0).squaredNorm();
+      set_field(kUpperArmBand, (w(kLeftShoulder) + w(kRightShoulder)) * gauss(along, 0.5, 0.2) *
+                                   from_axis(shoulder));
+    }
     basis_(3 * i + 1, kShift) = 1.0;
     if (p.y() < 0.03) sole_vertices_.push_back(i);
   }
@@ -391,6 +468,8 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // the fields each sex gets on average (breasts, fat distribution, muscle) add to some
   // girths: these factors calibrate both, per sex, so that the mean bodies' girths measured
   // by the tool's own code (`bench-survey --models-dir`) match the survey's means.
+  // The person's own girth bands (survey_calibration.hpp) then correct what is left, body by
+  // body.
   const Calibration& cal = a.female ? kFemaleCalibration : kMaleCalibration;
   const double pelvis_w = cal.pelvis * r(k_hip_breadth);
   const double pelvis_d = cal.pelvis * r(k_buttock_depth);
@@ -466,7 +545,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double chest_z = (a.m[k_chest_circ] - own.mean[k_chest_circ]) / own.sd[k_chest_circ];
   // Men get none: the template's flat pectorals and the muscle field shape their chest, and
   // no male body anywhere in the box may show breasts.
-  const double breast = a.female ? std::max(0.0, 0.046 + 0.008 * chest_z + 0.016 * f.bust) : 0.0;
+  const double breast = a.female ? std::max(0.0, 0.070 + 0.008 * chest_z + 0.016 * f.bust) : 0.0;
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
   t[kFields + kBelly] = 0.018 * f.fat_distribution;
   t[kFields + kGluteofemoral] = -0.015 * f.fat_distribution;
@@ -479,6 +558,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   t[kFields + kLimbFat] = 0.006 * f.limb_fat;
   t[kFields + kKneeAlignment] = 0.0105 * f.knee_alignment;
   t[kFields + kThighTop] = cal.thigh_top;
+  for (int k = 0; k < kKnobCount; ++k) t[kFields + kChestBand + k] = a.knobs[k];
   // Soles on y = 0.
   double lowest = 1e9;
   for (int i : sole_vertices_) lowest = std::min(lowest, basis_.row(3 * i + 1).dot(t));

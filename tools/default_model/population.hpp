@@ -39,17 +39,38 @@ struct IndependentFactors {
   double limb_fat = 0;           // + fuller limbs for the trunk (peripheral vs central fat)
 };
 
+// Per-person corrections of the girths: the amplitudes (metres of soft tissue at a thigh's
+// radius) of bands round the levels at which the tool measures them, set by
+// calibrate_population (survey_calibration.hpp) so that the girths the tool measures on the
+// body meet the drawn ones.
+enum CrossSectionKnob : int {
+  kKnobChest,
+  kKnobWaist,
+  kKnobPelvis,  // steers the hips (buttock) girth
+  kKnobNeck,
+  kKnobThigh,
+  kKnobCalf,
+  kKnobBiceps,  // steers the upper arm girth
+  kKnobCount
+};
+
 struct Anthropometry {
   bool female = false;
   std::array<double, kSurveyMeasures> m{};  // survey measures, cm (weight in kg)
   IndependentFactors f;
+  std::array<double, kKnobCount> knobs{};
 };
+
+// The features a calibration is a linear function of: 1, the survey measures in SDs of the
+// person's sex, the independent factors in their own SDs.
+constexpr int kPersonFeatures = 1 + kSurveyMeasures + 12;
+Eigen::VectorXd person_features(const Anthropometry& a);
 
 // Deterministic: the same seed gives the same population on every platform with IEEE doubles.
 // The standard normals behind the survey's correlated measures are truncated at
 // `truncate_survey` SD, those of the independent factors at `truncate_factors` SD.
 std::vector<Anthropometry> sample_population(bool female, int count, std::uint64_t seed,
-                                             double truncate_survey = 1.8,
+                                             double truncate_survey = 2.3,
                                              double truncate_factors = 2.3);
 
 // The reference person the template mannequin was built for: the average of the female and
