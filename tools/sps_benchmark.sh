@@ -67,8 +67,9 @@ for variant in sps sps-mean-centre sps-plain sps-random sls; do
 done
 new_doc=$(mktemp)
 /usr/bin/python3 tools/sps_benchmark_report.py "$OUT" "$REFERENCE_DIR" "$TRIALS" "$BODY_TRIALS" > "$new_doc"
-# The holds section belongs to tools/holds_benchmark.sh, the pixel-person one to
-# tools/pixel_person_benchmark.sh: carried over as they are.
+# The holds, pixel-person, loader and photo sections belong to tools/holds_benchmark.sh,
+# tools/pixel_person_benchmark.sh, tools/loader_benchmark.sh and tools/photo_benchmark.sh:
+# carried over as they are.
 /usr/bin/python3 - docs/benchmarks.md "$new_doc" <<'PY'
 import sys
 old_path, new_path = sys.argv[1], sys.argv[2]
@@ -78,7 +79,7 @@ except FileNotFoundError:
     old = ""
 new = open(new_path).read()
 # The sections other scripts write are carried over as they are.
-for name in ("holds", "pixel"):
+for name in ("holds", "pixel", "loader", "photo"):
     begin, end = "<!-- %s-begin" % name, "<!-- %s-end -->" % name
     if begin in old and end in old and begin not in new:
         block = old[old.index(begin):old.index(end) + len(end)]

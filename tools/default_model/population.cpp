@@ -392,13 +392,11 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
       const double under_chin = front * smoothstep(neck_mid - 0.035, neck_mid, p.y());
       set_field(kNeckBand, (1.0 - arm) * (1.0 - head) * (1.0 - 0.8 * under_chin) *
                                (w(kNeck) + w(kSpine3)) * gauss(p.y(), neck_mid, 0.03) * radial);
-      // Tapering from the furrow towards the knee (a narrow band raised far shows as a ring),
-      // gone above it (the knee pit folds).
-      // Away from the thigh bone's own axis, not faded at the crotch as the other soft-tissue
-      // fields are: the thigh is measured just below it, and a band faded there would have
-      // to be raised far, ballooning the thigh below.
-      // Rising from the knee to the furrow and on into the buttocks, as a full thigh tapers:
-      // a band round the furrow alone shows as a ring when raised.
+      // Rising from above the knee (lower, the knee pit folds) to the furrow and on into the
+      // buttocks, as a full thigh tapers: a band round the furrow alone showed as a ring when
+      // raised. Away from the thigh bone's own axis, not faded at the crotch as the other
+      // soft-tissue fields are: the thigh is measured just below it, and a band faded there
+      // had to be raised so far that it ballooned the thigh below.
       const double thigh_profile = smoothstep(0.50, 0.78, p.y());
       set_field(kThighBand, legs * (1.0 - 0.8 * medial) * thigh_profile *
                                 from_axis(p.x() >= 0 ? kLeftHip : kRightHip));
