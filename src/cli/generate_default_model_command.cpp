@@ -136,7 +136,8 @@ int run(int argc, char** argv) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("%zu models, %.1f s\n", models.size(), seconds);
-  std::printf("%s\n", models.back().calibration.c_str());
+  for (const auto& report : models.back().calibration_reports)
+    std::printf("%s\n", default_model::describe(report).c_str());
   int stale = 0;
   for (const auto& model : models) {
     const std::string path = dir + "/body_" + model.name + ".npz";

@@ -416,7 +416,7 @@ TEST_CASE("each sex's bodies are measured against their own survey draw", "[mode
     const GeneratedModel& m = generated(name);
     REQUIRE(m.calibration_reports.size() == 1);
     const default_model::CalibrationReport& r = m.calibration_reports.front();
-    std::printf("%s\n", m.calibration.c_str());
+    std::printf("%s\n", default_model::describe(r).c_str());
     CHECK(r.female == (name == "female"));
     CHECK(r.sample >= 200);
     CHECK(r.rounds >= 1);

@@ -120,9 +120,6 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   out[0].calibration_reports = {calibration[0]};
   out[1].calibration_reports = {calibration[1]};
   out[2].calibration_reports = calibration;
-  for (GeneratedModel& m : out)
-    for (const CalibrationReport& r : m.calibration_reports)
-      m.calibration += (m.calibration.empty() ? "" : "\n") + describe(r);
   return out;
 }
 

@@ -29,7 +29,6 @@ struct GeneratedModel {
   std::string name;  // "female", "male" or "neutral"
   // How far the population's girths are from their draw, per sex (neutral: both).
   std::vector<CalibrationReport> calibration_reports;
-  std::string calibration;                                              // the same, as text
   Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> v_template;  // V x 3 (population mean)
   Eigen::Matrix<std::uint32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces;  // F x 3
   Eigen::MatrixXf shapedirs;       // 3V x K (row 3v + axis), betas ~ N(0, 1)

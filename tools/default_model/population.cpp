@@ -99,23 +99,32 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     IndependentFactors& f = a.f;
     const FactorShift& shift = female ? kFemaleShift : kMaleShift;
     // Each factor with its sex's mean (in the order the normals are drawn).
-    const std::pair<double*, double> factors[] = {{&f.fat_distribution, shift.fat_distribution},
-                                                  {&f.fat_layer, 0.0},
-                                                  {&f.muscle, shift.muscle},
-                                                  {&f.bust, 0.0},
-                                                  {&f.shoulder_slope, shift.shoulder_slope},
-                                                  {&f.posture, 0.0},
-                                                  {&f.lordosis, shift.lordosis},
-                                                  {&f.head_forward, 0.0},
-                                                  {&f.neck_length, 0.0},
-                                                  {&f.shoulders_forward, 0.0},
-                                                  {&f.knee_alignment, 0.0},
-                                                  {&f.limb_fat, shift.limb_fat}};
-    for (const auto& [x, mean] : factors)
-      *x = kFactorScale * (mean + normal.truncated(truncate_factors));
+    const std::array<double, kFactorCount> means = {shift.fat_distribution,
+                                                    0.0,
+                                                    shift.muscle,
+                                                    0.0,
+                                                    shift.shoulder_slope,
+                                                    0.0,
+                                                    shift.lordosis,
+                                                    0.0,
+                                                    0.0,
+                                                    0.0,
+                                                    0.0,
+                                                    shift.limb_fat};
+    for (int k = 0; k < kFactorCount; ++k)
+      f.*factor_members()[k] = kFactorScale * (means[k] + normal.truncated(truncate_factors));
     people.push_back(a);
   }
   return people;
+}
+
+const std::array<double IndependentFactors::*, kFactorCount>& factor_members() {
+  using F = IndependentFactors;
+  static const std::array<double F::*, kFactorCount> members = {
+      &F::fat_distribution, &F::fat_layer,         &F::muscle,         &F::bust,
+      &F::shoulder_slope,   &F::posture,           &F::lordosis,       &F::head_forward,
+      &F::neck_length,      &F::shoulders_forward, &F::knee_alignment, &F::limb_fat};
+  return members;
 }
 
 Eigen::VectorXd person_features(const Anthropometry& a) {
@@ -123,13 +132,8 @@ Eigen::VectorXd person_features(const Anthropometry& a) {
   Eigen::VectorXd phi(kPersonFeatures);
   phi[0] = 1.0;
   for (int k = 0; k < kSurveyMeasures; ++k) phi[1 + k] = (a.m[k] - t.mean[k]) / t.sd[k];
-  const IndependentFactors& f = a.f;
-  const double factors[] = {
-      f.fat_distribution, f.fat_layer,         f.muscle,         f.bust,
-      f.shoulder_slope,   f.posture,           f.lordosis,       f.head_forward,
-      f.neck_length,      f.shoulders_forward, f.knee_alignment, f.limb_fat};
-  static_assert(sizeof(factors) / sizeof(factors[0]) == kPersonFeatures - 1 - kSurveyMeasures);
-  for (int k = 0; k < 12; ++k) phi[1 + kSurveyMeasures + k] = factors[k] / kFactorScale;
+  for (int k = 0; k < kFactorCount; ++k)
+    phi[1 + kSurveyMeasures + k] = a.f.*factor_members()[k] / kFactorScale;
   return phi;
 }
 

@@ -54,6 +54,11 @@ enum CrossSectionKnob : int {
   kKnobCount
 };
 
+// The independent factors in the order they are drawn (each as a member of
+// IndependentFactors), for the code that goes through all of them.
+constexpr int kFactorCount = 12;
+const std::array<double IndependentFactors::*, kFactorCount>& factor_members();
+
 struct Anthropometry {
   bool female = false;
   std::array<double, kSurveyMeasures> m{};  // survey measures, cm (weight in kg)
@@ -63,7 +68,7 @@ struct Anthropometry {
 
 // The features a calibration is a linear function of: 1, the survey measures in SDs of the
 // person's sex, the independent factors in their own SDs.
-constexpr int kPersonFeatures = 1 + kSurveyMeasures + 12;
+constexpr int kPersonFeatures = 1 + kSurveyMeasures + kFactorCount;
 Eigen::VectorXd person_features(const Anthropometry& a);
 
 // Deterministic: the same seed gives the same population on every platform with IEEE doubles.

@@ -89,6 +89,11 @@ Eigen::MatrixXd residuals(const BodyMeasurer& measurer, const std::vector<Anthro
   return r;
 }
 
+// The sum of squares of the finite residuals (a person whose slice failed counts nothing).
+double finite_square_sum(const Eigen::MatrixXd& r) {
+  return r.unaryExpr([](double x) { return std::isfinite(x) ? x * x : 0.0; }).sum();
+}
+
 void set_knobs(const Eigen::MatrixXd& D, std::vector<Anthropometry>& people) {
   for (auto& a : people) {
     const Eigen::VectorXd knobs = D * person_features(a);
@@ -124,17 +129,9 @@ CalibrationReport calibrate_population(std::vector<Anthropometry>& people,
     Anthropometry mean = people.front();
     const SurveyTable& t = mean.female ? kFemale : kMale;
     for (int k = 0; k < kSurveyMeasures; ++k) mean.m[k] = t.mean[k];
-    IndependentFactors f{};
-    for (int i = 0; i < n; ++i) {
-      const IndependentFactors& g = people[i].f;
-      f.fat_distribution += g.fat_distribution / n, f.fat_layer += g.fat_layer / n;
-      f.muscle += g.muscle / n, f.bust += g.bust / n, f.shoulder_slope += g.shoulder_slope / n;
-      f.posture += g.posture / n, f.lordosis += g.lordosis / n;
-      f.head_forward += g.head_forward / n, f.neck_length += g.neck_length / n;
-      f.shoulders_forward += g.shoulders_forward / n;
-      f.knee_alignment += g.knee_alignment / n, f.limb_fat += g.limb_fat / n;
-    }
-    mean.f = f;
+    mean.f = IndependentFactors{};
+    for (int i = 0; i < n; ++i)
+      for (const auto member : factor_members()) mean.f.*member += people[i].f.*member / n;
     constexpr double h = 0.004;
     for (int k = 0; k < kKnobCount; ++k) {
       Anthropometry up = mean, down = mean;
@@ -144,9 +141,9 @@ CalibrationReport calibrate_population(std::vector<Anthropometry>& people,
       for (int o = 0; o < kKnobCount; ++o) G(o, k) = (gu[o] - gd[o]) / (2 * h);
     }
   }
-  // The girths share bones (the chest band is blended from the chest's and the waist's scales,
-  // the calf from the thigh's and the calf's), so G is far from diagonal and not well
-  // conditioned: a damped least-squares step (Levenberg-Marquardt) keeps the knobs small.
+  // The bands overlap a little (the hips' reaches the thigh, the chest's the waist and the
+  // upper arm) and the sample's own response refitted below can be poorly conditioned: a
+  // damped least-squares step (Levenberg-Marquardt) keeps the steps bounded.
   using Square = Eigen::Matrix<double, kKnobCount, kKnobCount>;
   auto damped_inverse = [](const Square& J) {
     return Square((J.transpose() * J + kDamping * Square::Identity()).inverse() * J.transpose());
@@ -175,7 +172,7 @@ CalibrationReport calibrate_population(std::vector<Anthropometry>& people,
   Eigen::MatrixXd r = residuals(measurer, people, n, threads);
   summarise(r, report.rms_before, &report.bias_before);
   Eigen::MatrixXd best_D = D, best_r = r;
-  double best_total = r.unaryExpr([](double x) { return std::isfinite(x) ? x * x : 0.0; }).sum();
+  double best_total = finite_square_sum(r);
   for (int round = 0; round < rounds; ++round) {
     // Ridge regression of each girth's residual on the features, over the people whose every
     // slice was found (the intercept is not shrunk).
@@ -219,7 +216,7 @@ CalibrationReport calibrate_population(std::vector<Anthropometry>& people,
         if (fitted.allFinite()) G_inverse = damped_inverse(fitted);
       }
     }
-    const double total = r.unaryExpr([](double x) { return std::isfinite(x) ? x * x : 0.0; }).sum();
+    const double total = finite_square_sum(r);
     if (total < best_total) best_total = total, best_D = D, best_r = r;
   }
   // Keep the best round's calibration (a later one can be worse where the levels jump).
