@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <initializer_list>
@@ -193,7 +194,9 @@ std::array<float, 4> quaternion_of(const Eigen::Matrix3f& r) {
 }
 
 tinygltf::Value vrm_extension(const Model& model, const std::vector<std::string>& names,
-                              const ExportOptions& options) {
+                              const ExportOptions& options,
+                              const std::optional<tinygltf::Value>& look_at,
+                              const std::vector<std::pair<std::string, int>>& expression_targets) {
   const VrmMeta& m = options.vrm;
   // The schema's enumerations: a wrong value would make a file VRM readers reject.
   const auto require_one_of = [](const std::string& field, const std::string& value,
@@ -262,7 +265,111 @@ tinygltf::Value vrm_extension(const Model& model, const std::vector<std::string>
   vrm["specVersion"] = str("1.0");
   vrm["meta"] = tinygltf::Value(meta);
   vrm["humanoid"] = tinygltf::Value(humanoid);
+  if (look_at) vrm["lookAt"] = *look_at;
+  // Expressions: the model's own expression components (SMPL-X's), one custom expression each
+  // on its morph target; readers such as three-vrm also need the block present for lookAt.
+  tinygltf::Value::Object custom;
+  for (const auto& [name, index] : expression_targets) {
+    tinygltf::Value::Object bind;
+    bind["node"] = tinygltf::Value(0);
+    bind["index"] = tinygltf::Value(index);
+    bind["weight"] = tinygltf::Value(1.0);
+    tinygltf::Value::Object expression;
+    expression["morphTargetBinds"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(bind)});
+    expression["isBinary"] = tinygltf::Value(false);
+    custom[name] = tinygltf::Value(expression);
+  }
+  tinygltf::Value::Object expressions;
+  expressions["preset"] = tinygltf::Value(tinygltf::Value::Object{});
+  if (!custom.empty()) expressions["custom"] = tinygltf::Value(custom);
+  vrm["expressions"] = tinygltf::Value(expressions);
   return tinygltf::Value(vrm);
+}
+
+// VRM 1.0 `lookAt` of type "bone" when the skeleton has both eyes: its origin between the
+// eyes, in the head bone's local frame (three-vrm and UniVRM apply it to the head node), and
+// the eyes turning at most 10 degrees for a target 90 degrees off (UniVRM's defaults).
+std::optional<tinygltf::Value> vrm_look_at(const std::vector<std::string>& names,
+                                           const Vertices& joints,
+                                           const std::vector<Eigen::Matrix3f>& frames) {
+  const auto find = [&](const char* name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+  };
+  const int head = find("head"), left = find("left_eye_smplhf"), right = find("right_eye_smplhf");
+  if (head < 0 || left < 0 || right < 0) return std::nullopt;
+  const Eigen::Vector3f between =
+      0.5f * (joints.row(left) + joints.row(right)).transpose() - joints.row(head).transpose();
+  const Eigen::Vector3f local = frames[static_cast<std::size_t>(head)].transpose() * between;
+  tinygltf::Value::Object range;
+  range["inputMaxValue"] = tinygltf::Value(90.0);
+  range["outputScale"] = tinygltf::Value(10.0);
+  tinygltf::Value::Object look;
+  look["type"] = str("bone");
+  look["offsetFromHeadBone"] = tinygltf::Value(
+      tinygltf::Value::Array{tinygltf::Value(double(local.x())), tinygltf::Value(double(local.y())),
+                             tinygltf::Value(double(local.z()))});
+  for (const char* m : {"rangeMapHorizontalInner", "rangeMapHorizontalOuter",
+                        "rangeMapVerticalDown", "rangeMapVerticalUp"})
+    look[m] = tinygltf::Value(range);
+  return tinygltf::Value(look);
+}
+
+// The body's primitives, one per material, sharing the vertices and morph targets: skin on
+// the body; the eyeballs (faces that an eye joint alone moves, as in SMPL-X and the built-in
+// models) white, with a dark iris where they face forward (+Z). Metallic-roughness PBR
+// factors, no textures.
+void add_primitives(tinygltf::Model& doc, BufferBuilder& bb, const Model& model,
+                    const Vertices& rest, const Vertices& joints, const SplitMesh& split,
+                    const tinygltf::Primitive& shared, tinygltf::Mesh& gmesh) {
+  std::vector<int> eyes;
+  for (const char* name : {"left_eye_smplhf", "right_eye_smplhf"}) {
+    const auto it = std::find(model.joint_names.begin(), model.joint_names.end(), name);
+    if (it != model.joint_names.end())
+      eyes.push_back(static_cast<int>(it - model.joint_names.begin()));
+  }
+  const float iris_cosine = std::cos(0.52f);         // a 12 mm iris on a 24 mm eyeball: 30 degrees
+  std::array<std::vector<std::uint32_t>, 3> groups;  // skin, eye white, iris
+  for (Eigen::Index f = 0; f < split.faces.rows(); ++f) {
+    int group = 0;
+    for (const int e : eyes) {
+      bool all = true;
+      Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+      for (int c = 0; c < 3; ++c) {
+        const auto v = static_cast<Eigen::Index>(split.source[split.faces(f, c)]);
+        all = all && model.weights(v, e) >= 0.99f;
+        centre += rest.row(v).transpose() / 3.0f;
+      }
+      if (!all) continue;
+      const Eigen::Vector3f d = (centre - joints.row(e).transpose()).normalized();
+      group = d.z() > iris_cosine ? 2 : 1;
+    }
+    for (int c = 0; c < 3; ++c) groups[group].push_back(split.faces(f, c));
+  }
+  struct Look {
+    const char* name;
+    std::array<double, 4> color;  // linear RGB
+    double roughness;
+  };
+  const Look looks[3] = {{"skin", {0.80, 0.56, 0.45, 1.0}, 0.55},
+                         {"eye_white", {0.85, 0.84, 0.80, 1.0}, 0.15},
+                         {"eye_iris", {0.09, 0.05, 0.03, 1.0}, 0.1}};
+  for (int g = 0; g < 3; ++g) {
+    if (groups[g].empty()) continue;
+    tinygltf::Material m;
+    m.name = looks[g].name;
+    m.pbrMetallicRoughness.baseColorFactor = {looks[g].color.begin(), looks[g].color.end()};
+    m.pbrMetallicRoughness.metallicFactor = 0.0;
+    m.pbrMetallicRoughness.roughnessFactor = looks[g].roughness;
+    doc.materials.push_back(m);
+    tinygltf::Primitive prim = shared;
+    prim.material = static_cast<int>(doc.materials.size()) - 1;
+    const int view =
+        bb.add_view(groups[g].data(), groups[g].size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                                   groups[g].size());
+    gmesh.primitives.push_back(prim);
+  }
 }
 
 tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_in, FileKind kind,
@@ -386,13 +493,6 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
     prim.attributes["WEIGHTS_0"] =
         bb.add_accessor(wview, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, V);
   }
-  {
-    const int view =
-        bb.add_view(split.faces.data(), static_cast<std::size_t>(split.faces.size()) * 4,
-                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                   static_cast<std::size_t>(split.faces.size()));
-  }
 
   tinygltf::Mesh gmesh;
   gmesh.name = model.name.empty() ? "body" : model.name;
@@ -400,6 +500,7 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   const Eigen::Index E = model.expression_dirs.rows() == 3 * model.v_template.rows()
                              ? model.expression_dirs.cols()
                              : 0;
+  std::vector<std::pair<std::string, int>> expression_targets;  // name, morph target index
   if (morph || E > 0) {
     // Every default weight is 0: the base mesh already is the design.
     tinygltf::Value::Array names;
@@ -408,6 +509,12 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
       for (auto& x : d) x *= scale;
       std::map<std::string, int> target;
       target["POSITION"] = bb.add_vec3(d.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      // The normals' change too, so that shading follows the shape key in engines (a target
+      // with positions only keeps the base mesh's normals).
+      Vertices moved_normals;
+      compute_vertex_normals(Vertices(rest + scale * delta), model.faces, moved_normals);
+      const std::vector<float> dn = gather(Vertices(moved_normals - normals), split.source);
+      target["NORMAL"] = bb.add_vec3(dn.data(), V, TINYGLTF_TARGET_ARRAY_BUFFER, false);
       prim.targets.push_back(target);
       names.emplace_back(label);
       gmesh.weights.push_back(0.0);
@@ -431,13 +538,14 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
     }
     for (Eigen::Index e = 0; e < E; ++e) {
       std::snprintf(label, sizeof label, "expr_%02d", static_cast<int>(e));
+      expression_targets.emplace_back(label, static_cast<int>(prim.targets.size()));
       add_target(posed_delta(model.expression_dirs.col(e).data(), nullptr), 1.0f, label);
     }
     tinygltf::Value::Object extras;
     extras["targetNames"] = tinygltf::Value(names);
     gmesh.extras = tinygltf::Value(extras);
   }
-  gmesh.primitives.push_back(prim);
+  add_primitives(doc, bb, model, rest, joints, split, prim, gmesh);
   doc.meshes.push_back(gmesh);
 
   // Skeleton: node 0 is the skinned mesh, nodes 1..J the joints, each rotated so its +Y
@@ -560,7 +668,8 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
   doc.asset.extras = tinygltf::Value(info);
   if (kind == FileKind::vrm) {
     doc.extensionsUsed.push_back("VRMC_vrm");
-    doc.extensions["VRMC_vrm"] = vrm_extension(model, names, options);
+    doc.extensions["VRMC_vrm"] = vrm_extension(
+        model, names, options, vrm_look_at(names, joints, frames), expression_targets);
   }
   return doc;
 }

@@ -103,7 +103,15 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
 // SMPL-X (55 joints) stores its expression components after the shape components in
 // `shapedirs`: 300 + 100 in v1.1 (400 columns), 10 + 10 in v1.0 (20 columns). Any other
 // skeleton has shape components only.
-long long shape_columns(long long joints, long long columns) {
+long long shape_columns(const NpzArchive& npz, long long joints, long long columns) {
+  // A file that says how many shape components it has (the built-in models' variance_share,
+  // one entry per component) is believed; it is checked against (K,) when read.
+  if (npz.contains("variance_share")) {
+    const NpyHeader h = npz.header("variance_share");
+    if (!h.needs_pickle() && h.shape.size() == 1 && h.shape[0] >= 1 &&
+        static_cast<long long>(h.shape[0]) <= columns)
+      return static_cast<long long>(h.shape[0]);
+  }
   if (joints != 55) return columns;
   return columns > 300 ? 300 : (columns + 1) / 2;
 }
@@ -202,7 +210,7 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
   const long long columns = static_cast<long long>(sd.shape[2]);
   if (columns < 1) fail_array(npz, "shapedirs", "has no shape components (K = 0)");
   const long long peeked_joints = peek_joint_count(npz);
-  const long long K = shape_columns(peeked_joints, columns);
+  const long long K = shape_columns(npz, peeked_joints, columns);
   m.total_components = static_cast<int>(K);
   m.total_expressions = static_cast<int>(columns - K);
   const long long keep = (components == 0 || components > K) ? K : components;

@@ -138,6 +138,12 @@ int run(int argc, char** argv) {
   std::printf("%zu models, %.1f s\n", models.size(), seconds);
   for (const auto& report : models.back().calibration_reports)
     std::printf("%s\n", default_model::describe(report).c_str());
+  std::printf(
+      "rig: %ld joints, regressed to within %.2f mm of the template's; %d vertices see no "
+      "bone (weights from their neighbours)\n",
+      static_cast<long>(models.front().joints.rows()), 1e3 * models.front().joint_fit_error,
+      models.front().vertices_without_visible_bone);
+  std::printf("uv layout: %s\n", models.front().uv_distortion.describe().c_str());
   int stale = 0;
   for (const auto& model : models) {
     const std::string path = dir + "/body_" + model.name + ".npz";

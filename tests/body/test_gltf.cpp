@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <tuple>
 
 #include <Eigen/Geometry>
@@ -458,6 +459,22 @@ TEST_CASE("gltf: every bone points at its child (local +Y), leaves continue thei
   }
 }
 
+// The model vertex behind each exported vertex: a vertex on a texture seam is written once per
+// texture coordinate, in first-use order of (vertex, texture vertex) over the faces.
+body::Vertices as_exported(const body::Model& model, const body::Vertices& v) {
+  if (model.uvs.rows() == 0) return v;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> seen;
+  std::vector<int> source;
+  for (Eigen::Index f = 0; f < model.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (seen.emplace(std::make_pair(model.faces(f, c), model.uv_faces(f, c)), 0).second)
+        source.push_back(static_cast<int>(model.faces(f, c)));
+  body::Vertices out(static_cast<Eigen::Index>(source.size()), 3);
+  for (std::size_t i = 0; i < source.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = v.row(source[i]);
+  return out;
+}
+
 TEST_CASE("gltf: T-pose puts the arms horizontal, with the model's skinning", "[gltf][rig]") {
   const body::Model model = body::load_default_model(10);
   const auto betas = some_betas(10);
@@ -494,7 +511,7 @@ TEST_CASE("gltf: T-pose puts the arms horizontal, with the model's skinning", "[
   const auto doc = read_back(path);
   const auto& prim = doc.meshes.at(0).primitives.at(0);
   const auto base = accessor_data<float>(doc, prim.attributes.at("POSITION"), 3);
-  CHECK(max_vertex_error(base, posed.vertices) < 1e-5f);
+  CHECK(max_vertex_error(base, as_exported(model, posed.vertices)) < 1e-5f);
   // Target 2 = the same rotations applied to the body with beta_2 + 1, minus the design.
   const body::Rotations local = body::t_pose_rotations(model, body::evaluate(model, betas).joints);
   const body::Skinning skin(model, local);
@@ -504,10 +521,11 @@ TEST_CASE("gltf: T-pose puts the arms horizontal, with the model's skinning", "[
   const body::Vertices expect =
       skin.vertices(s2.vertices, s2.joints) - skin.vertices(s1.vertices, s1.joints);
   const auto t2 = accessor_data<float>(doc, prim.targets.at(2).at("POSITION"), 3);
-  CHECK(max_vertex_error(t2, expect) < 1e-5f);
+  CHECK(max_vertex_error(t2, as_exported(model, expect)) < 1e-5f);
   CHECK_THAT(doc.nodes.at(0).extras.Get("rest_pose").Get<std::string>(), Contains("T"));
   // The skinning of the rest pose itself: identity rotations change nothing.
-  const body::Skinning rest(model, body::Rotations(24, Eigen::Matrix3f::Identity()));
+  const body::Skinning rest(model, body::Rotations(static_cast<std::size_t>(model.joint_count()),
+                                                   Eigen::Matrix3f::Identity()));
   CHECK((rest.vertices(s1.vertices, s1.joints) - s1.vertices).cwiseAbs().maxCoeff() < 1e-6f);
 }
 
@@ -695,7 +713,15 @@ TEST_CASE("gltf: .vrm holds VRMC_vrm with meta and the humanoid bone map", "[glt
         doc.nodes.at(static_cast<std::size_t>(bones.Get(role).Get("node").GetNumberAsInt())).name ==
         joint);
   }
-  CHECK_FALSE(bones.Has("leftThumbProximal"));  // no fingers in a 24-joint skeleton
+  // The built-in models have SMPL-X's skeleton: fingers, jaw and eyes in the humanoid map,
+  // and a lookAt on the eye bones.
+  CHECK(bones.Has("leftThumbProximal"));
+  CHECK(bones.Has("rightLittleDistal"));
+  CHECK(bones.Has("jaw"));
+  CHECK(bones.Has("leftEye"));
+  REQUIRE(vrm.Has("lookAt"));
+  CHECK(vrm.Get("lookAt").Get("type").Get<std::string>() == "bone");
+
   // T-pose: the left hand lies level with the left shoulder, out on +x.
   const auto world = world_matrices(doc);
   const auto node_of = [&](const char* role) {
@@ -739,9 +765,13 @@ TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
   const auto doc = read_back(path);
   CHECK(joint_node(doc, 0).name == "hips");
   CHECK(joint_node(doc, 16).name == "leftUpperArm");
-  // No humanoid role, named in the same style: no SMPL name among the humanoid ones.
-  CHECK(joint_node(doc, 22).name == "leftHandEnd");
-  for (int j = 0; j < 24; ++j) {
+  // The built-in models have SMPL-X's skeleton: jaw, eyes and fingers have humanoid roles too,
+  // and no SMPL name is left among the humanoid ones.
+  CHECK(joint_node(doc, 22).name == "jaw");
+  CHECK(joint_node(doc, 23).name == "leftEye");
+  CHECK(joint_node(doc, 25).name == "leftIndexProximal");
+  CHECK(joint_node(doc, 54).name == "rightThumbDistal");
+  for (int j = 0; j < 55; ++j) {
     INFO("joint " << j << ": " << joint_node(doc, j).name);
     CHECK(joint_node(doc, j).name.find('_') == std::string::npos);
   }
@@ -754,7 +784,8 @@ TEST_CASE("gltf: presets and humanoid joint names", "[gltf][presets]") {
   const std::pair<int, const char*> expected[] = {
       {0, "pelvis"},      {1, "thigh_l"},     {2, "thigh_r"},  {3, "spine_01"},    {4, "calf_l"},
       {7, "foot_l"},      {10, "ball_l"},     {12, "neck_01"}, {13, "clavicle_l"}, {15, "head"},
-      {16, "upperarm_l"}, {19, "lowerarm_r"}, {20, "hand_l"},  {23, "hand_end_r"}};
+      {16, "upperarm_l"}, {19, "lowerarm_r"}, {20, "hand_l"},  {22, "jaw"},        {23, "eye_l"},
+      {25, "index_01_l"}, {54, "thumb_03_r"}};
   for (const auto& [j, name] : expected) CHECK(joint_node(ue, j).name == name);
   // Every SMPL-family joint has a name in each engine style, the fingers, jaw and eyes too.
   for (const auto* names : {body::builtin_joint_names(24), body::builtin_joint_names(55)}) {

@@ -351,8 +351,11 @@ TEST_CASE("loader: the embedded default model", "[loader]") {
   }
   CHECK(m.source == "<embedded neutral>");
   CHECK(m.name == "neutral");
-  CHECK(m.joint_count() == 24);
+  CHECK(m.joint_count() == 55);  // SMPL-X's skeleton
   CHECK(m.joint_names.front() == "pelvis");
+  CHECK(m.joint_names.at(22) == "jaw");
+  CHECK(m.uvs.rows() > m.vertex_count());  // seams split texture vertices
+  CHECK(m.uv_faces.rows() == m.faces.rows());
   CHECK(m.component_count() == std::min(10, m.total_components));
   const auto mesh = body::evaluate(m, Eigen::VectorXf());
   const double height = mesh.vertices.col(1).maxCoeff() - mesh.vertices.col(1).minCoeff();

@@ -92,16 +92,16 @@ std::vector<Eigen::VectorXf> test_betas() {
 // three of its vertices do.
 enum Region { kTorso, kLeftArm, kRightArm, kLeftLeg, kRightLeg };
 Region region_of_joint(int j) {
+  // SMPL-X's order: the fingers of the left hand are joints 25..39, the right hand's 40..54.
+  if (j >= 25) return j < 40 ? kLeftArm : kRightArm;
   switch (j) {
     case 16:
     case 18:
     case 20:
-    case 22:
       return kLeftArm;
     case 17:
     case 19:
     case 21:
-    case 23:
       return kRightArm;
     case 1:
     case 4:
@@ -205,32 +205,94 @@ TEST_CASE("the template is a closed, consistently wound manifold of 8k-20k verti
   CHECK(std::abs(mean[lowest].y()) < 0.01);  // soles on the ground
 }
 
-TEST_CASE("the rig: 24 joints, convex regressor rows, normalised sparse weights", "[model]") {
+TEST_CASE("the rig: SMPL-X's 55 joints, convex regressor rows, normalised sparse weights",
+          "[model]") {
   const GeneratedModel& m = generated();
   const Eigen::Index V = m.v_template.rows();
-  REQUIRE(m.j_regressor.rows() == 24);
+  REQUIRE(m.j_regressor.rows() == 55);
   REQUIRE(m.j_regressor.cols() == V);
   REQUIRE(m.weights.rows() == V);
-  REQUIRE(m.weights.cols() == 24);
+  REQUIRE(m.weights.cols() == 55);
   CHECK(m.j_regressor.minCoeff() >= 0.0f);
-  for (int j = 0; j < 24; ++j) CHECK(m.j_regressor.row(j).sum() == Approx(1.0).margin(1e-4));
+  for (int j = 0; j < 55; ++j) CHECK(m.j_regressor.row(j).sum() == Approx(1.0).margin(1e-4));
   CHECK(m.weights.minCoeff() >= 0.0f);
+  std::vector<int> dominant(55, 0);
   for (Eigen::Index v = 0; v < V; ++v) {
     REQUIRE(m.weights.row(v).sum() == Approx(1.0).margin(1e-4));
     REQUIRE((m.weights.row(v).array() > 0).count() <= 4);
+    Eigen::Index j;
+    m.weights.row(v).maxCoeff(&j);
+    ++dominant[j];
   }
   CHECK(m.joint_fit_error < 1e-3);
+  CHECK(m.vertices_without_visible_bone < V / 100);
+  // Every joint moves a part of the body of its own, the finger joints included (the hand
+  // bone of the old 24-joint rig folded all five fingers together).
+  for (int j = 0; j < 55; ++j) {
+    INFO("joint " << j);
+    CHECK(dominant[j] >= 10);
+  }
   // Joints where a body has them: head above neck above pelvis above knees above ankles, left
-  // joints on +x.
+  // joints on +x; jaw below and in front of the head joint's level at the face, eyes in front
+  // at eye height; each finger runs away from its wrist.
   const auto& J = m.joints;
   CHECK(J(15, 1) > J(12, 1));
   CHECK(J(12, 1) > J(0, 1));
   CHECK(J(0, 1) > J(4, 1));
   CHECK(J(4, 1) > J(7, 1));
-  for (int left : {1, 4, 7, 10, 13, 16, 18, 20, 22}) {
+  for (int left : {1, 4, 7, 10, 13, 16, 18, 20, 23}) {
     CHECK(J(left, 0) > 0.02f);
     CHECK(J(left + 1, 0) == Approx(-J(left, 0)).margin(1e-3));
   }
+  CHECK(std::abs(J(22, 0)) < 1e-3f);
+  CHECK(J(22, 2) > J(15, 2));
+  for (int eye : {23, 24}) {
+    CHECK(J(eye, 1) > J(15, 1) + 0.03f);
+    CHECK(J(eye, 2) > J(15, 2) + 0.05f);
+  }
+  for (int i = 0; i < 15; ++i) {
+    INFO("finger joint " << i);
+    const int l = 25 + i, r = 40 + i;
+    CHECK(J(l, 0) > 0.3f);
+    CHECK(J(r, 0) == Approx(-J(l, 0)).margin(1e-3));
+    const int parent = i % 3 == 0 ? 20 : l - 1;
+    const int grandparent = i % 3 == 0 ? 18 : (i % 3 == 1 ? 20 : l - 2);
+    CHECK((J.row(l) - J.row(grandparent)).norm() > (J.row(parent) - J.row(grandparent)).norm());
+  }
+}
+
+TEST_CASE("the texture layout: charts by body part, in [0, 1]^2, none flipped, low distortion",
+          "[model][uv]") {
+  const GeneratedModel& m = generated();
+  const auto& uv = m.uv;
+  REQUIRE(uv.faces.size() == static_cast<std::size_t>(m.faces.rows()));
+  // Seams split vertices: more texture vertices than vertices, but not wildly more.
+  CHECK(uv.uv.size() > static_cast<std::size_t>(m.v_template.rows()));
+  CHECK(uv.uv.size() < static_cast<std::size_t>(1.2 * m.v_template.rows()));
+  for (const auto& p : uv.uv) {
+    REQUIRE(p.x() >= 0.0);
+    REQUIRE(p.x() <= 1.0);
+    REQUIRE(p.y() >= 0.0);
+    REQUIRE(p.y() <= 1.0);
+  }
+  // A face's corners are texture vertices of that face's own vertices.
+  std::vector<int> vertex_of(uv.uv.size(), -1);
+  for (std::size_t f = 0; f < uv.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      int& v = vertex_of[uv.faces[f][c]];
+      if (v < 0) v = static_cast<int>(m.faces(f, c));
+      REQUIRE(v == static_cast<int>(m.faces(f, c)));
+    }
+  const default_model::UvDistortion& d = m.uv_distortion;
+  std::printf("uv layout: %s\n", d.describe().c_str());
+  // Torso front and back, face and back of the head, eyes, arms, hands (back and palm), legs,
+  // feet (top and sole): 18 parts.
+  CHECK(d.charts >= 18);
+  CHECK(d.charts <= 24);
+  CHECK(d.flipped_faces == 0);
+  CHECK(d.angle_mean_deg < 2.0);
+  CHECK(d.area_log2_mean < 0.5);
+  CHECK(d.packing > 0.35);
 }
 
 TEST_CASE("the shape spaces: 16 components, betas ~ N(0, 1), variance shares", "[model]") {
@@ -488,9 +550,13 @@ TEST_CASE("the committed assets load through body::load_model like an SMPL file"
     const body::Model model = body::load_model(asset_path(m.name), 0);
     REQUIRE(model.vertex_count() == m.v_template.rows());
     REQUIRE(model.component_count() == m.shapedirs.cols());
-    REQUIRE(model.joint_count() == 24);
+    REQUIRE(model.joint_count() == 55);
     CHECK(model.parents[0] == -1);
-    CHECK(model.parents[23] == 21);
+    CHECK(model.joint_names[22] == "jaw");
+    CHECK(model.parents[22] == 15);
+    CHECK(model.joint_names[54] == "right_thumb3");
+    CHECK(model.parents[54] == 53);
+    CHECK(model.parents[40] == 21);
     CHECK(model.faces.rows() == m.faces.rows());
     Eigen::VectorXf betas = Eigen::VectorXf::Zero(10);
     betas << 1.5f, -2.0f, 0.5f, 3.0f, -1.0f, 0.0f, 2.0f, -3.0f, 1.0f, -0.5f;

@@ -4,6 +4,9 @@
 // usage: node check_export.mjs FILE --height H [--joints N] [--targets N] [--vrm] [--uv]
 //        [--bone NAME]... [--target NAME]...   (bones and morph targets that must exist)
 //        [--no-geometry]    (a test fixture, not a body: skip the T-pose and facing checks)
+//        [--materials a,b]  (the skinned meshes' materials, by name, in order)
+//        [--morph-normals]  (every morph target carries normal deltas)
+//        [--look-at]        (.vrm: a VRM lookAt of type bone, on the eye bones)
 import fs from 'node:fs';
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
@@ -53,6 +56,19 @@ if (args.includes('--uv')) {
   const uv = mesh.geometry.attributes.uv;
   check(uv !== undefined && uv.count === mesh.geometry.attributes.position.count,
         'texture coordinates (TEXCOORD_0) on every vertex');
+}
+
+if (opt('materials')) {
+  const names = [];
+  scene.traverse((o) => {
+    if (o.isSkinnedMesh) names.push(o.material.name);
+  });
+  check(names.join(',') === opt('materials'), `materials ${names.join(',')} = ${opt('materials')}`);
+}
+if (args.includes('--morph-normals')) {
+  const n = (mesh.geometry.morphAttributes.normal || []).length;
+  const p = (mesh.geometry.morphAttributes.position || []).length;
+  check(p > 0 && n === p, `normal deltas on every morph target (${n} of ${p})`);
 }
 
 // Morph dictionary: the expected count, every influence at 0 (the base mesh is the design).
@@ -146,6 +162,19 @@ if (vrm_mode) {
     for (const [role, joint] of Object.entries(expect)) {
       const node = vrm.humanoid.getRawBoneNode(role);
       check(node && node.name === joint, `humanoid ${role} = ${joint}`);
+    }
+    if (args.includes('--look-at')) {
+      const look = vrm.lookAt;
+      check(look && look.applier && look.applier.constructor.type === 'bone',
+            `lookAt of type bone (${look && look.applier && look.applier.constructor.type})`);
+      if (look) {
+        // The origin between the eyes: in front of and above the head joint.
+        const origin = look.getLookAtWorldPosition(new THREE.Vector3());
+        const head = vrm.humanoid.getRawBoneNode('head').getWorldPosition(new THREE.Vector3());
+        const eye = vrm.humanoid.getRawBoneNode('leftEye').getWorldPosition(new THREE.Vector3());
+        check(Math.abs(origin.y - eye.y) < 2e-3 && origin.z > head.z && Math.abs(origin.x) < 2e-3,
+              `lookAt origin between the eyes (${origin.toArray().map((v) => v.toFixed(3))})`);
+      }
     }
   }
   if (vrm && geometry) {

@@ -19,8 +19,9 @@ check() {  # check NAME TARGETS EXPORT-OPTIONS...
   local name=$1 targets=$2
   shift 2
   "$exe" export --betas $betas "$@" -o "$dir/$name" >/dev/null
-  node "$here/check_export.mjs" "$dir/$name" --joints 24 --targets "$targets" --height "$height" \
-    --bone pelvis --bone left_wrist
+  node "$here/check_export.mjs" "$dir/$name" --joints 55 --targets "$targets" --height "$height" \
+    --bone pelvis --bone left_wrist --bone left_index3 --bone jaw --uv \
+    --materials skin,eye_white,eye_iris
 }
 check split.glb 20
 check betas.glb 10 --morph-betas
@@ -29,13 +30,16 @@ check tpose.glb 20 --rest-pose t
 check blender.glb 20 --preset blender
 check threejs.glb 10 --preset threejs
 "$exe" export --betas $betas --preset unity -o "$dir/unity.glb" >/dev/null
-node "$here/check_export.mjs" "$dir/unity.glb" --joints 24 --targets 20 --height "$height" \
-  --bone hips --bone leftUpperArm --bone leftHandEnd
+node "$here/check_export.mjs" "$dir/unity.glb" --joints 55 --targets 20 --height "$height" \
+  --bone hips --bone leftUpperArm --bone leftIndexProximal --bone rightThumbDistal --bone jaw \
+  --uv --morph-normals
 "$exe" export --betas $betas --preset unreal -o "$dir/unreal.glb" >/dev/null
-node "$here/check_export.mjs" "$dir/unreal.glb" --joints 24 --targets 20 --height "$height" \
-  --bone pelvis --bone spine_01 --bone thigh_l --bone calf_r --bone upperarm_l --bone hand_r
+node "$here/check_export.mjs" "$dir/unreal.glb" --joints 55 --targets 20 --height "$height" \
+  --bone pelvis --bone spine_01 --bone thigh_l --bone calf_r --bone upperarm_l --bone hand_r \
+  --bone index_01_l --bone thumb_03_r --bone eye_l --uv
 "$exe" export --betas $betas --preset vrm -o "$dir/avatar.vrm" >/dev/null
-node "$here/check_export.mjs" "$dir/avatar.vrm" --vrm --joints 24 --targets 20 --height "$height"
+node "$here/check_export.mjs" "$dir/avatar.vrm" --vrm --joints 55 --targets 20 --height "$height" \
+  --uv --look-at --morph-normals --materials skin,eye_white,eye_iris
 
 # SMPL+H and SMPL-X look-alikes (cylinders with their joint names, hierarchy, UVs, SMPL-X's
 # 10 shape + 10 expression columns): names, humanoid fingers, UVs, the shape/expression split.

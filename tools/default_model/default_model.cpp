@@ -9,7 +9,9 @@
 #include "pca.hpp"
 #include "population.hpp"
 #include "rig.hpp"
+#include "smplx_rig.hpp"
 #include "survey_calibration.hpp"
+#include "uv_layout.hpp"
 
 namespace default_model {
 
@@ -17,8 +19,12 @@ namespace {
 
 struct Template {
   TriMesh mesh;
-  Eigen::MatrixXd rig_weights;  // 4 influences, for glTF
-  Eigen::MatrixXd regressor;    // 24 x V
+  SmplxRig rig;                   // the exported skeleton (55 joints)
+  Eigen::MatrixXd rig_weights;    // V x 55, 4 influences, for glTF
+  Eigen::MatrixXd rig_regressor;  // 55 x V
+  Eigen::MatrixXd regressor;      // 24 x V: the shape model's joints (the calibration's too)
+  HeatWeightReport heat;
+  UvLayout uv;
   double joint_fit_error = 0;
 };
 
@@ -84,16 +90,15 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
     for (auto& f : mesh.faces) std::swap(f[1], f[2]);
 
   const Skeleton& skeleton = mannequin.skeleton();
-  // Rig weights (4 influences, for glTF) and broader weights for the shape deformation.
-  tpl.rig_weights = skin_weights(mesh.vertices, skeleton, 0.22, 4);
+  // Broad weights for the shape deformation (its 24 bones), and the exported rig's.
   const Eigen::MatrixXd deform_weights = skin_weights(mesh.vertices, skeleton, 1.0, 0);
   tpl.regressor = joint_regressor(mesh.vertices, skeleton);
-  for (int j = 0; j < kJointCount; ++j) {
-    Vec3 fit = Vec3::Zero();
-    for (int v = 0; v < static_cast<int>(mesh.vertices.size()); ++v)
-      fit += tpl.regressor(j, v) * mesh.vertices[v];
-    tpl.joint_fit_error = std::max(tpl.joint_fit_error, (fit - skeleton.joints[j]).norm());
-  }
+  tpl.rig = smplx_rig(mannequin);
+  tpl.rig_weights = heat_weights(
+      mesh, tpl.rig, [&](const Vec3& p) { return mannequin.field(p); }, 4, &tpl.heat);
+  tpl.rig_regressor =
+      smplx_regressor(mesh, tpl.rig, tpl.regressor, tpl.rig_weights, &tpl.joint_fit_error);
+  tpl.uv = uv_layout(mesh, tpl.rig, tpl.rig_weights);
 
   DeformationModel deformation(mesh.vertices, smoothed_normals(mesh, 8), skeleton, deform_weights);
   deformation.smooth_fields(vertex_neighbours(mesh), 36);
@@ -157,10 +162,13 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
   out.faces.resize(static_cast<Eigen::Index>(mesh.faces.size()), 3);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int a = 0; a < 3; ++a) out.faces(f, a) = static_cast<std::uint32_t>(mesh.faces[f][a]);
-  out.j_regressor = tpl.regressor.cast<float>();
+  out.j_regressor = tpl.rig_regressor.cast<float>();
   out.weights = tpl.rig_weights.cast<float>();
   out.joints = (out.j_regressor * out.v_template);
   out.joint_fit_error = tpl.joint_fit_error;
+  out.vertices_without_visible_bone = tpl.heat.vertices_without_visible_bone;
+  out.uv_distortion = uv_distortion(mesh, tpl.uv);
+  out.uv = tpl.uv;
   {
     // Statures of the population from the y rows of the highest and lowest template vertices.
     auto rows = [&](const std::vector<int>& ids) {
@@ -192,32 +200,44 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
       for (int k = 0; k < K; ++k) s[static_cast<std::size_t>(r) * K + k] = out.shapedirs(r, k);
     arrays.push_back(make_array("shapedirs", "<f4", {std::size_t(V), 3, std::size_t(K)}, s));
   }
+  const int J = tpl.rig.size();
   {
-    std::vector<float> r(static_cast<std::size_t>(kJointCount) * V);
-    for (int j = 0; j < kJointCount; ++j)
+    std::vector<float> r(static_cast<std::size_t>(J) * V);
+    for (int j = 0; j < J; ++j)
       for (int v = 0; v < V; ++v) r[static_cast<std::size_t>(j) * V + v] = out.j_regressor(j, v);
-    arrays.push_back(
-        make_array("J_regressor", "<f4", {std::size_t(kJointCount), std::size_t(V)}, r));
+    arrays.push_back(make_array("J_regressor", "<f4", {std::size_t(J), std::size_t(V)}, r));
   }
   {
-    std::vector<float> w(static_cast<std::size_t>(V) * kJointCount);
+    std::vector<float> w(static_cast<std::size_t>(V) * J);
     for (int v = 0; v < V; ++v)
-      for (int j = 0; j < kJointCount; ++j)
-        w[static_cast<std::size_t>(v) * kJointCount + j] = out.weights(v, j);
-    arrays.push_back(make_array("weights", "<f4", {std::size_t(V), std::size_t(kJointCount)}, w));
+      for (int j = 0; j < J; ++j) w[static_cast<std::size_t>(v) * J + j] = out.weights(v, j);
+    arrays.push_back(make_array("weights", "<f4", {std::size_t(V), std::size_t(J)}, w));
   }
   {
-    std::vector<std::uint32_t> k(2 * kJointCount);
-    for (int j = 0; j < kJointCount; ++j) {
-      const int p = joint_parents()[j];
+    std::vector<std::uint32_t> k(2 * J);
+    for (int j = 0; j < J; ++j) {
+      const int p = tpl.rig.parents[j];
       k[j] = p < 0 ? 4294967295u : static_cast<std::uint32_t>(p);
-      k[kJointCount + j] = static_cast<std::uint32_t>(j);
+      k[J + j] = static_cast<std::uint32_t>(j);
     }
-    arrays.push_back(make_array("kintree_table", "<u4", {2, std::size_t(kJointCount)}, k));
+    arrays.push_back(make_array("kintree_table", "<u4", {2, std::size_t(J)}, k));
   }
   {
     std::vector<float> j(out.joints.data(), out.joints.data() + out.joints.size());
-    arrays.push_back(make_array("J", "<f4", {std::size_t(kJointCount), 3}, j));
+    arrays.push_back(make_array("J", "<f4", {std::size_t(J), 3}, j));
+  }
+  {
+    // Texture coordinates as SMPL-X stores them: vt (T, 2), origin bottom left; ft (F, 3).
+    std::vector<float> vt;
+    for (const auto& p : tpl.uv.uv) {
+      vt.push_back(static_cast<float>(p.x()));
+      vt.push_back(static_cast<float>(p.y()));
+    }
+    arrays.push_back(make_array("vt", "<f4", {tpl.uv.uv.size(), 2}, vt));
+    std::vector<std::uint32_t> ft;
+    for (const auto& f : tpl.uv.faces)
+      for (int a = 0; a < 3; ++a) ft.push_back(static_cast<std::uint32_t>(f[a]));
+    arrays.push_back(make_array("ft", "<u4", {tpl.uv.faces.size(), 3}, ft));
   }
   {
     std::vector<float> s(out.variance_share.data(), out.variance_share.data() + K);

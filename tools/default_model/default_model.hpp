@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "survey_calibration.hpp"
+#include "uv_layout.hpp"
 
 namespace default_model {
 
@@ -32,13 +33,16 @@ struct GeneratedModel {
   Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> v_template;  // V x 3 (population mean)
   Eigen::Matrix<std::uint32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces;  // F x 3
   Eigen::MatrixXf shapedirs;       // 3V x K (row 3v + axis), betas ~ N(0, 1)
-  Eigen::MatrixXf j_regressor;     // 24 x V
-  Eigen::MatrixXf weights;         // V x 24, at most 4 influences per vertex
+  Eigen::MatrixXf j_regressor;     // 55 x V (SMPL-X's joints)
+  Eigen::MatrixXf weights;         // V x 55, at most 4 influences per vertex
   Eigen::VectorXf variance_share;  // K
-  Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> joints;  // 24 x 3 on v_template
+  Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> joints;  // 55 x 3 on v_template
   std::vector<std::uint8_t> npz;                                    // the file's bytes
   // Diagnostics.
-  double joint_fit_error = 0;               // max |J_regressor * template - constructed joint|, m
+  double joint_fit_error = 0;             // max |J_regressor * template - constructed joint|, m
+  int vertices_without_visible_bone = 0;  // the heat weights' (smplx_rig.hpp)
+  UvLayout uv;                            // the texture layout (vt, ft)
+  UvDistortion uv_distortion;
   std::vector<double> population_statures;  // m
 };
 

@@ -248,6 +248,10 @@ Mannequin::Mannequin() {
                            0.006});
   }
   head_cuts_.push_back({ellipsoid(Vec3(0, 1.5317, 0.103), Y, X, 0.0016, 0.0225, 0.014), 0.0015});
+  landmarks_.mouth_y = 1.5317;
+  landmarks_.jaw = Vec3(0, 1.55, 0.02);
+  landmarks_.chin = Vec3(0, 1.492, 0.082);
+  landmarks_.face = Vec3(0, 1.588, 0.072);
   head_parts_.push_back({ellipsoid(Vec3(0, 1.499, 0.079), Y, X, 0.017, 0.022, 0.017), 0.016});
   for (double sx : {1.0, -1.0}) {
     head_parts_.push_back(
@@ -258,6 +262,8 @@ Mannequin::Mannequin() {
     // leaving an open almond of eyeball between them (about 6 mm high at its middle; an
     // adult's palpebral fissure is 8-10 mm; lids that meet read as closed eyes).
     const Vec3 eye(sx * 0.031, 1.5985, 0.0848);
+    landmarks_.eye_centres[sx > 0 ? 0 : 1] = eye;
+    landmarks_.eye_radius = 0.0122;
     // The lids meet the eyeball in a crease (small blend radii): blended smoothly, lids and
     // eyeball read as one closed bulge.
     head_details_.push_back({ellipsoid(eye, Y, X, 0.0122, 0.0122, 0.0122), 0.0015});
@@ -328,6 +334,9 @@ Mannequin::Mannequin() {
         side.arm.push_back(
             {ellipsoid(base - 0.006 * dir + 0.008 * n, dir, n, 0.008, 0.0065, 0.85 * r), 0.006});
         const double part[3] = {0.45, 0.31, 0.24};
+        // SMPL-X's slot of this finger (index, middle, pinky, ring).
+        FingerChain& chain = landmarks_.fingers[s][f == 0 ? 0 : f == 1 ? 1 : f == 2 ? 3 : 2];
+        chain.points[0] = base;
         const double thick[4] = {0.0079, 0.0071, 0.0064, 0.0058};
         const double wide[4] = {1.0, 0.9, 0.82, 0.74};
         Vec3 a = base;
@@ -337,6 +346,7 @@ Mannequin::Mannequin() {
                                       0.97 * wide[ph + 1] * r, ph == 0 ? 0.008 : 0.5 * thick[ph],
                                       ph == 2 ? 0.8 * thick[3] : 0.5 * thick[ph + 1]),
                               0.0025});
+          chain.points[ph + 1] = ph < 2 ? b : Vec3(b + 0.8 * thick[3] * dir);
           if (ph < 2)  // the joint: as wide as the phalanx there, and proud on the back
             side.arm.push_back({ellipsoid(b + 0.0016 * n, dir, n, 0.0055, thick[ph + 1] * 0.98,
                                           wide[ph + 1] * r * 1.0),
@@ -361,6 +371,10 @@ Mannequin::Mannequin() {
       side.arm.push_back(
           {capsule(t1, t2, n, 0.0096, 0.0102, 0.0085, 0.0088, 0.007, 0.0085), 0.003});
       nail(t2 + 0.006 * dir, dir, back, 0.03, 0.0068, 0.0085);
+      // The thumb's three joints: its base by the wrist, the knuckle, and the joint between
+      // the last two phalanges (the template draws those as one segment).
+      landmarks_.fingers[s][4].points = {t0, t1, Vec3(t1 + 0.5 * (t2 - t1)),
+                                         Vec3(t2 + 0.008 * dir)};
     }
     std::tie(side.hand_centre, side.hand_radius) = bounding_sphere(side.arm, side.hand_begin);
     (void)M;

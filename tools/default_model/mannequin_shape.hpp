@@ -58,6 +58,20 @@ struct Skeleton {
   std::array<double, kJointCount> bone_radius;
 };
 
+// Where the template's fingers, eyes and jaw are, for the exported SMPL-X rig (rig.hpp).
+struct FingerChain {
+  std::array<Vec3, 4> points;  // the three joints on the finger's axis, then its tip
+};
+struct RigLandmarks {
+  // [side: 0 = left, 1 = right][SMPL-X's order: index, middle, pinky, ring, thumb]
+  std::array<std::array<FingerChain, 5>, 2> fingers;
+  std::array<Vec3, 2> eye_centres;  // left (+x), right
+  double eye_radius = 0;            // the eyeballs are spheres
+  Vec3 jaw, chin;                   // the jaw's joint and the front of its bone
+  Vec3 face;                        // the head's second bone runs from the head joint to here
+  double mouth_y = 0;               // the mouth line: the jaw moves what lies below it
+};
+
 // Tapered capsule with elliptic cross sections; also an ellipsoid when a == b.
 struct Capsule {
   Vec3 a, b;            // axis end points
@@ -98,6 +112,7 @@ class Mannequin {
   double target_edge(const Vec3& p) const;
 
   const Skeleton& skeleton() const { return skeleton_; }
+  const RigLandmarks& landmarks() const { return landmarks_; }
   Eigen::AlignedBox3d bounds() const;
 
  private:
@@ -120,6 +135,7 @@ class Mannequin {
   static constexpr double kMorphBottom = 0.775, kMorphTop = 0.97;
 
   Skeleton skeleton_;
+  RigLandmarks landmarks_;
   std::vector<TorsoLevel> levels_;
   std::vector<std::pair<Capsule, double>> torso_parts_;  // blended into the loft
   std::vector<std::pair<Capsule, double>> head_parts_;

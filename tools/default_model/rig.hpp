@@ -1,6 +1,7 @@
 // Skinning weights and the joint regressor of the template mesh.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,5 +20,12 @@ Eigen::MatrixXd skin_weights(const std::vector<Vec3>& vertices, const Skeleton& 
 // entropy weights tilted so the combination reproduces the joint exactly on the template).
 // Rows are non-negative and sum to 1.
 Eigen::MatrixXd joint_regressor(const std::vector<Vec3>& vertices, const Skeleton& skeleton);
+
+// The weights of one such joint over the `candidates` (vertex ids) within `radius` of `c`, as
+// (vertex, weight) pairs in `out`; returns the distance between their combination and `c` (not
+// zero when c lies outside the candidates' convex hull; 1e9 when there are none).
+double convex_joint_weights(const std::vector<Vec3>& vertices, const Vec3& c,
+                            const std::vector<int>& candidates, double radius,
+                            std::vector<std::pair<int, double>>* out);
 
 }  // namespace default_model
