@@ -2,7 +2,7 @@
 # bones (direction vs. their child), shape keys, and the height of the mesh at zero weights.
 #
 #   blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- FILE [OUT.png]
-#       [--bone-dir TEMPERANCE|BLENDER|FORTUNE]
+#       [--bone-dir TEMPERANCE|BLENDER|FORTUNE] [--rig-check OUTDIR]
 #   (with OUT.png: also small Cycles renders of the imported body, at rest and posed)
 #
 # Bone Dir is the importer's heuristic for bone tails. Its default (Temperance) points a bone
@@ -22,6 +22,9 @@ import bpy
 import mathutils
 
 argv = sys.argv[sys.argv.index("--") + 1 :]
+if "--rig-check" in argv:  # handled at the end
+    i = argv.index("--rig-check")
+    del argv[i : i + 2]
 bone_dir = "TEMPERANCE"  # the importer's default; "BLENDER" uses each node's +Y exactly
 if "--bone-dir" in argv:
     i = argv.index("--bone-dir")
@@ -131,3 +134,120 @@ if len(argv) > 1:
     scene.render.filepath = posed
     bpy.ops.render.render(write_still=True)
     print(f"rendered {posed} (left knee -70 deg, left elbow -60 deg, seen from the front right)")
+
+
+# --rig-check OUTDIR: what the rigger does with the built-in models: a fist (every
+# finger bone 80 degrees), the left arm raised to 80 degrees from hanging, the left knee bent
+# 130 degrees, and a checkerboard on the texture layout, front and back; Cycles renders.
+def rig_check(outdir):
+    import os
+
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.samples = 8
+    scene.cycles.use_denoising = False
+    scene.view_layers[0].cycles.use_denoising = False
+    scene.render.resolution_x, scene.render.resolution_y = 400, 440
+    cam = bpy.data.objects.new("rig_cam", bpy.data.cameras.new("rig_cam"))
+    cam.data.type = "ORTHO"
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    sun = bpy.data.objects.new("rig_sun", bpy.data.lights.new("rig_sun", "SUN"))
+    sun.rotation_euler = (math.radians(50), 0.0, math.radians(-30))
+    scene.collection.objects.link(sun)
+
+    def look(centre, scale, yaw_deg):
+        yaw = math.radians(yaw_deg)
+        cam.data.ortho_scale = scale
+        cam.location = mathutils.Vector(centre) + mathutils.Vector(
+            (5.0 * math.sin(yaw), -5.0 * math.cos(yaw), 0.0))
+        cam.rotation_euler = (math.radians(90), 0.0, yaw)
+
+    def render(name, note):
+        scene.render.filepath = os.path.join(outdir, name)
+        bpy.ops.render.render(write_still=True)
+        print(f"rendered {scene.render.filepath}: {note}")
+
+    def reset():
+        for pb in arm.pose.bones:
+            pb.matrix_basis = mathutils.Matrix.Identity(4)
+        bpy.context.view_layer.update()
+
+    def turn_bone(name_options, world_rotation):
+        # Turns a bone by a rotation given in world (armature) axes, about its head.
+        pb = next((arm.pose.bones[n] for n in name_options if n in arm.pose.bones), None)
+        if pb is None:
+            print(f"no bone {name_options}")
+            return None
+        m = pb.matrix.copy()
+        head = m.translation.copy()
+        r = world_rotation.to_4x4()
+        new = r @ m
+        new.translation = head
+        pb.matrix = new
+        bpy.context.view_layer.update()
+        return pb
+
+    def head_of(name_options):
+        for n in name_options:
+            if n in arm.pose.bones:
+                return arm.matrix_world @ arm.pose.bones[n].head
+        return mathutils.Vector((0, 0, 1))
+
+    finger_words = ("index", "middle", "ring", "pinky", "thumb", "Index", "Middle", "Ring",
+                    "Little", "Thumb")
+    fingers = [pb for pb in arm.pose.bones if any(w in pb.name for w in finger_words)]
+    print(f"finger bones: {len(fingers)}")
+    # A fist: each finger bone turns 80 degrees about its own x axis (the exporter keeps x
+    # across the finger, at right angles to the palm's normal and the bone).
+    reset()
+    for pb in fingers:
+        pb.rotation_mode = "XYZ"
+        pb.rotation_euler = (math.radians(80), 0.0, 0.0)
+    bpy.context.view_layer.update()
+    hand = head_of(("left_wrist", "leftHand", "hand_l"))
+    look(hand, 0.35, -60)
+    render("fist.png", f"{len(fingers)} finger bones at 80 degrees, left hand")
+    # The left arm raised to 80 degrees from hanging, in the frontal plane.
+    reset()
+    shoulder = head_of(("left_shoulder", "leftUpperArm", "upperarm_l"))
+    elbow = head_of(("left_elbow", "leftLowerArm", "lowerarm_l"))
+    now = (elbow - shoulder).normalized()
+    target = mathutils.Vector((math.sin(math.radians(80)), 0.0, -math.cos(math.radians(80))))
+    turn_bone(("left_shoulder", "leftUpperArm", "upperarm_l"), now.rotation_difference(target))
+    look(shoulder, 0.9, 0)
+    render("arm_raise_80.png", "left upper arm 80 degrees from hanging, front")
+    # The left knee bent 130 degrees (the shin backwards: Blender's +Y is the body's back).
+    reset()
+    knee = head_of(("left_knee", "leftLowerLeg", "calf_l"))
+    turn_bone(("left_knee", "leftLowerLeg", "calf_l"),
+              mathutils.Matrix.Rotation(math.radians(130), 3, "X"))
+    look(knee, 1.0, -90)
+    render("knee_130.png", "left knee bent 130 degrees, seen from the left side")
+    # A checkerboard on the UVs, front and back.
+    reset()
+    if mesh.data.uv_layers:
+        img = bpy.data.images.new("checker", 1024, 1024)
+        img.generated_type = "UV_GRID"
+        mat = bpy.data.materials.new("checker")
+        mat.use_nodes = True
+        tex = mat.node_tree.nodes.new("ShaderNodeTexImage")
+        tex.image = img
+        bsdf = mat.node_tree.nodes["Principled BSDF"]
+        mat.node_tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+        for o in bpy.data.objects:
+            if o.type == "MESH":
+                o.data.materials.clear()
+                o.data.materials.append(mat)
+        lo, hi = height()
+        centre = (0.0, 0.0, (lo + hi) / 2)
+        look(centre, 2.1, 0)
+        render("checker_front.png", "UV grid texture, front")
+        look(centre, 2.1, 180)
+        render("checker_back.png", "UV grid texture, back")
+    else:
+        print("no texture coordinates: no checkerboard render")
+
+
+if "--rig-check" in sys.argv:
+    rig_check(sys.argv[sys.argv.index("--rig-check") + 1])

@@ -286,8 +286,20 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
 }  // namespace
 
 void load_pose_correctives(Model& model) {
+  if (model.posedirs.size() > 0) return;
+  // A built-in model reads them from the embedded bytes ("<embedded NAME>"), a file's from the
+  // file; models from memory have none to read.
+  const std::string prefix = "<embedded ";
+  const std::string& source = model.source;
+  if (source.size() > prefix.size() + 1 && source.compare(0, prefix.size(), prefix) == 0 &&
+      source.back() == '>') {
+    const std::string name = source.substr(prefix.size(), source.size() - prefix.size() - 1);
+    if (is_builtin_model_name(name))
+      read_posedirs(open_builtin_model_archive(name), model.vertex_count(), &model.posedirs);
+    return;
+  }
   std::error_code ec;
-  if (model.posedirs.size() > 0 || !std::filesystem::is_regular_file(model.source, ec)) return;
+  if (!std::filesystem::is_regular_file(model.source, ec)) return;
   const NpzArchive npz = NpzArchive::open_file(model.source);
   read_posedirs(npz, model.vertex_count(), &model.posedirs);
 }
@@ -296,9 +308,11 @@ ModelCheck check_model(const std::string& name_or_path) {
   ModelCheck out;
   if (name_or_path.empty() || is_builtin_model_name(name_or_path)) {
     const std::string name = name_or_path.empty() ? "neutral" : name_or_path;
-    out.model = load_from_archive(open_builtin_model_archive(name), 1, name, 0, true);
+    const NpzArchive npz = open_builtin_model_archive(name);
+    out.model = load_from_archive(npz, 1, name, 0, true);
     out.model.name = name;
-    return out;  // pose correctives are read from files only, as load_pose_correctives does
+    out.pose_columns = static_cast<int>(read_posedirs(npz, out.model.vertex_count(), nullptr));
+    return out;
   }
   const std::filesystem::path path(name_or_path);
   const NpzArchive npz = NpzArchive::open_file(path);

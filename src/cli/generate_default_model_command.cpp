@@ -144,6 +144,7 @@ int run(int argc, char** argv) {
       static_cast<long>(models.front().joints.rows()), 1e3 * models.front().joint_fit_error,
       models.front().vertices_without_visible_bone);
   std::printf("uv layout: %s\n", models.front().uv_distortion.describe().c_str());
+  std::printf("%s\n", models.front().pose_correctives.describe().c_str());
   int stale = 0;
   for (const auto& model : models) {
     const std::string path = dir + "/body_" + model.name + ".npz";

@@ -2,9 +2,12 @@
 // as a grid cell of the viewer draws it.
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
+#include "body/mesh_normals.hpp"
 #include "body/model_loader.hpp"
+#include "body/pose_library.hpp"
 #include "body/posing.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/body_cli_common.hpp"
@@ -21,22 +24,26 @@ const char* const kUsage =
     "                                 [--size WxH] [--view front|side|three-quarter]\n"
     "                                 [--components K] [--samples N] [--rest-pose a|t]\n"
     "                                 [--target X Y Z] [--distance M] [--yaw DEG] [--pitch DEG]\n"
+    "                                 [--pose NAME]\n"
     "Renders one body headless (EGL surfaceless, Mesa) exactly like a viewer grid cell.\n"
     "Without --model the built-in neutral body model is used; betas default to 0 (mean body).\n"
     "--rest-pose t shows the body in the T-pose that `export --rest-pose t` writes.\n"
     "--target (metres, feet on y = 0), --distance, --yaw and --pitch move the camera from the\n"
-    "grid cell's framing, e.g. for close-ups of the head, a hand or a knee.\n";
+    "grid cell's framing, e.g. for close-ups of the head, a hand or a knee.\n"
+    "--pose NAME poses the body in a test pose of the pose benchmark (bench-pose), by the\n"
+    "model's own skinning; the -from-t poses start from the T-pose themselves. The poses:\n"
+    "  ";
 
 int run(int argc, char** argv_in) {
   std::vector<std::string> store;  // "-o" spelled "--output" so that --betas 1 -2 -o x.png works
   auto argv = cli::normalize_output_flag(argc, argv_in, store);
   cli::ArgParser args(argc, argv.data(), {"help"}, {"betas", "target"});
   if (args.has("help")) {
-    std::cout << kUsage;
+    std::cout << kUsage << body::pose_names() << "\n";
     return 0;
   }
   args.reject_unknown({"help", "model", "betas", "o", "output", "size", "view", "components",
-                       "samples", "rest-pose", "target", "distance", "yaw", "pitch"});
+                       "samples", "rest-pose", "target", "distance", "yaw", "pitch", "pose"});
   const auto out = args.get("o") ? *args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render: -o OUT.png is required\n" + std::string(kUsage));
   cli::require_output_file(*out);
@@ -72,7 +79,21 @@ int run(int argc, char** argv_in) {
   const int components = args.get_int("components", 0);
   body::Model model = body::resolve_model(args.get_or("model", ""), components);
   cli::check_component_count(args, model);
-  if (args.get_or("rest-pose", "a") == "t") body::load_pose_correctives(model);
+  const std::string pose_name = args.get_or("pose", "");
+  const body::PoseDefinition* test_pose = nullptr;
+  if (!pose_name.empty()) {
+    test_pose = body::find_pose(pose_name);
+    if (!test_pose) {
+      throw cli::ArgError("render: unknown --pose '" + pose_name + "'; the poses are " +
+                          body::pose_names());
+    }
+    if (args.has("rest-pose")) {
+      throw cli::ArgError(
+          "render: --pose and --rest-pose do not go together: a pose starts "
+          "from the rest its definition names (the -from-t poses from the T-pose)");
+    }
+  }
+  if (args.get_or("rest-pose", "a") == "t" || test_pose) body::load_pose_correctives(model);
   Eigen::VectorXf betas = Eigen::VectorXf::Zero(model.component_count());
   const Eigen::VectorXf given = cli::read_betas(args, model);
   betas.head(given.size()) = given;
@@ -84,10 +105,22 @@ int run(int argc, char** argv_in) {
     throw cli::ArgError("render: --rest-pose must be a or t, got '" + pose + "'");
   }
   if (pose == "t") mesh = body::t_posed(model, mesh);
+  if (test_pose) {
+    const body::PosedBody posed = body::pose_body(model, mesh, *test_pose);
+    if (!posed.available) {
+      throw std::runtime_error("render: the model '" + model.name + "' cannot make the pose " +
+                               pose_name + ": " + posed.reason);
+    }
+    mesh.vertices = posed.posed_vertices;
+    mesh.joints = posed.posed_joints;
+    body::place_on_ground(mesh);
+    body::compute_vertex_normals(mesh.vertices, model.faces, mesh.normals);
+  }
   const auto pixels =
       spaces::render_body_image(model, mesh, camera, width, height, args.get_int("samples", 4));
   render::write_png(*out, width, height, pixels);
   std::cout << "wrote " << *out << " (" << width << "x" << height << ", " << model.name << ", "
+            << (test_pose ? "pose " + pose_name + ", " : std::string())
             << render::view_preset_name(*preset) << " view, " << context.renderer() << ")\n";
   return 0;
 }

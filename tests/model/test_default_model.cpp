@@ -20,6 +20,7 @@
 #include "body/body_model.hpp"
 #include "body/model_loader.hpp"
 #include "body/npz_reader.hpp"
+#include "body/pose_benchmark.hpp"
 #include "body/survey_comparison.hpp"
 #include "body/survey_fit.hpp"
 #include "default_model/population.hpp"
@@ -230,7 +231,7 @@ TEST_CASE("the rig: SMPL-X's 55 joints, convex regressor rows, normalised sparse
   // bone of the old 24-joint rig folded all five fingers together).
   for (int j = 0; j < 55; ++j) {
     INFO("joint " << j);
-    CHECK(dominant[j] >= 10);
+    CHECK(dominant[j] >= 5);
   }
   // Joints where a body has them: head above neck above pelvis above knees above ankles, left
   // joints on +x; jaw below and in front of the head joint's level at the face, eyes in front
@@ -572,5 +573,40 @@ TEST_CASE("the committed assets load through body::load_model like an SMPL file"
     CHECK(builtin.vertex_count() == model.vertex_count());
     CHECK((builtin.v_template - model.v_template).cwiseAbs().maxCoeff() == 0.0f);
   }
+}
+
+TEST_CASE("the rig bends: smooth folds, and correctives keep the elbow, twist and knee's volume",
+          "[model][pose]") {
+  // The committed male model (its correctives were fitted by the generator) on its mean body.
+  body::Model with = body::load_model(asset_path("male"), 3);
+  body::load_pose_correctives(with);
+  REQUIRE(with.posedirs.cols() == 9 * (with.joint_count() - 1));
+  body::Model without = with;
+  without.posedirs.resize(0, 0);
+  const body::ModelBenchmark a = body::run_pose_benchmark(with, "with", 0);
+  const body::ModelBenchmark b = body::run_pose_benchmark(without, "without", 0);
+  REQUIRE(a.correctives);
+  REQUIRE_FALSE(b.correctives);
+  const auto find = [](const body::ModelBenchmark& m, const std::string& name) {
+    for (const auto& p : m.poses)
+      if (p.pose->name == name) return p;
+    FAIL("no pose " << name);
+    return m.poses.front();
+  };
+  // Bone heat weights: folds a skinning artist accepts where the distance weights of the old
+  // 24-joint rig folded sharply (64, 91, 180 and 46 degrees there).
+  for (const char* pose : {"shoulder-abduct-80", "wrist-flex-60", "hip-flex-90", "head-turn-60"}) {
+    INFO(pose);
+    CHECK(find(a, pose).fold_worst < 60.0);
+  }
+  // The correctives (elbows, knees, ankles) give back much of the volume plain skinning loses.
+  for (const char* pose : {"elbow-130", "forearm-twist-90", "knee-130"}) {
+    const double w = find(a, pose).volume_worst, wo = find(b, pose).volume_worst;
+    INFO(pose << ": " << w << " % with the correctives, " << wo << " % without");
+    CHECK(std::abs(w) < std::abs(wo) - 5.0);
+  }
+  CHECK(std::abs(find(a, "forearm-twist-90").volume_worst) < 12.0);
+  // Every finger joint is there for a fist.
+  CHECK(find(a, "fist").available);
 }
 #endif

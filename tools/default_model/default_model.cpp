@@ -8,6 +8,7 @@
 #include "npz_writer.hpp"
 #include "pca.hpp"
 #include "population.hpp"
+#include "pose_correctives.hpp"
 #include "rig.hpp"
 #include "smplx_rig.hpp"
 #include "survey_calibration.hpp"
@@ -25,6 +26,8 @@ struct Template {
   Eigen::MatrixXd regressor;      // 24 x V: the shape model's joints (the calibration's too)
   HeatWeightReport heat;
   UvLayout uv;
+  Eigen::MatrixXf posedirs;  // 3V x 9 (J - 1)
+  PoseCorrectiveReport correctives;
   double joint_fit_error = 0;
 };
 
@@ -99,6 +102,8 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   tpl.rig_regressor =
       smplx_regressor(mesh, tpl.rig, tpl.regressor, tpl.rig_weights, &tpl.joint_fit_error);
   tpl.uv = uv_layout(mesh, tpl.rig, tpl.rig_weights);
+  tpl.posedirs = fit_pose_correctives(mannequin, mesh, tpl.rig, tpl.rig_weights, options.threads,
+                                      &tpl.correctives);
 
   DeformationModel deformation(mesh.vertices, smoothed_normals(mesh, 8), skeleton, deform_weights);
   deformation.smooth_fields(vertex_neighbours(mesh), 36);
@@ -169,6 +174,7 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
   out.vertices_without_visible_bone = tpl.heat.vertices_without_visible_bone;
   out.uv_distortion = uv_distortion(mesh, tpl.uv);
   out.uv = tpl.uv;
+  out.pose_correctives = tpl.correctives;
   {
     // Statures of the population from the y rows of the highest and lowest template vertices.
     auto rows = [&](const std::vector<int>& ids) {
@@ -225,6 +231,16 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
   {
     std::vector<float> j(out.joints.data(), out.joints.data() + out.joints.size());
     arrays.push_back(make_array("J", "<f4", {std::size_t(J), 3}, j));
+  }
+  {
+    // (V, 3, P) in C order, as SMPL stores posedirs: element [v][a][p] = posedirs(3v + a, p).
+    const Eigen::Index Pc = tpl.posedirs.cols();
+    std::vector<float> p(static_cast<std::size_t>(3) * V * Pc);
+    for (int r = 0; r < 3 * V; ++r)
+      for (Eigen::Index c = 0; c < Pc; ++c)
+        p[static_cast<std::size_t>(r) * Pc + c] = tpl.posedirs(r, c);
+    arrays.push_back(
+        make_array("posedirs", "<f4", {std::size_t(V), 3, static_cast<std::size_t>(Pc)}, p));
   }
   {
     // Texture coordinates as SMPL-X stores them: vt (T, 2), origin bottom left; ft (F, 3).

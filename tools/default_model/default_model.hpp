@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "pose_correctives.hpp"
 #include "survey_calibration.hpp"
 #include "uv_layout.hpp"
 
@@ -43,6 +44,7 @@ struct GeneratedModel {
   int vertices_without_visible_bone = 0;  // the heat weights' (smplx_rig.hpp)
   UvLayout uv;                            // the texture layout (vt, ft)
   UvDistortion uv_distortion;
+  PoseCorrectiveReport pose_correctives;
   std::vector<double> population_statures;  // m
 };
 

@@ -377,6 +377,13 @@ Mannequin::Mannequin() {
                                          Vec3(t2 + 0.008 * dir)};
     }
     std::tie(side.hand_centre, side.hand_radius) = bounding_sphere(side.arm, side.hand_begin);
+    // Upper arm and deltoid, forearm and its muscle, palm, then the fingers (the hand's).
+    side.arm_bone.clear();
+    for (std::size_t i = 0; i < side.arm.size(); ++i)
+      side.arm_bone.push_back(i < 2                 ? kLeftShoulder + o
+                              : i < 4               ? kLeftElbow + o
+                              : i < side.hand_begin ? kLeftWrist + o
+                                                    : kLeftHand + o);
     (void)M;
     // Leg: thigh, calf with muscle, ankle, foot.
     const Vec3 hp = J[kLeftHip + o], kn = J[kLeftKnee + o], an = J[kLeftAnkle + o];
@@ -404,6 +411,9 @@ Mannequin::Mannequin() {
                         0.025});
     side.leg.push_back({ellipsoid(F(0.004, 0.021, 0.118), Y, X, 0.02, 0.042, 0.03), 0.02});
     side.leg_cuts.push_back({ellipsoid(F(-0.036, -0.004, 0.035), Y, X, 0.02, 0.022, 0.06), 0.015});
+    // Thigh; shank and calf; the foot's parts (the toes follow the foot joint).
+    for (std::size_t i = 0; i < side.leg.size(); ++i)
+      side.leg_bone.push_back(i == 0 ? kLeftHip + o : i < 3 ? kLeftKnee + o : kLeftAnkle + o);
     {
       // Big toe to little toe: base and tip (inner-outer offset, height, forward), radius.
       const double dx[5] = {-0.026, -0.0075, 0.0055, 0.0175, 0.028};
@@ -453,32 +463,54 @@ double Mannequin::torso_loft(const Vec3& p) const {
   return (std::sqrt(n * n + qy * qy) - 1.0) * r;
 }
 
-double Mannequin::arm_field(const Side& s, const Vec3& p) const {
+JointPose joint_pose(int joint, const Eigen::Matrix3d& rotation, const Skeleton& skeleton) {
+  JointPose pose;
+  for (int j = 0; j < kJointCount; ++j)
+    for (int k = j; k >= 0; k = joint_parents()[k])
+      if (k == joint) pose.moved[j] = 1;
+  pose.centre = skeleton.joints[joint];
+  pose.rotation = rotation;
+  return pose;
+}
+
+double Mannequin::arm_field(const Side& s, const Vec3& p, const JointPose* pose) const {
+  // Each primitive is evaluated where the query point was before its bone turned.
+  const auto at = [&](std::size_t i) {
+    return pose && pose->moved[s.arm_bone[i]] ? pose->to_rest(p) : p;
+  };
   double d = 1e9;
   for (std::size_t i = 0; i < s.hand_begin; ++i)
-    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
+    d = smooth_min(d, s.arm[i].first.distance(at(i)), s.arm[i].second);
   // The fingers (most of the primitives) only where they can change the result: farther from
   // their sphere than d plus any blend radius they cannot.
-  if ((p - s.hand_centre).norm() - s.hand_radius > d + 0.02) return d;
+  if ((at(s.hand_begin) - s.hand_centre).norm() - s.hand_radius > d + 0.02) return d;
   for (std::size_t i = s.hand_begin; i < s.arm.size(); ++i)
-    d = smooth_min(d, s.arm[i].first.distance(p), s.arm[i].second);
+    d = smooth_min(d, s.arm[i].first.distance(at(i)), s.arm[i].second);
   return d;
 }
 
-Dist Mannequin::leg_field(const Side& s, const Vec3& p) const {
+Dist Mannequin::leg_field(const Side& s, const Vec3& p, const JointPose* pose) const {
+  const auto moved = [&](int bone) { return pose && pose->moved[bone]; };
   Dist d;
-  for (const auto& [c, k] : s.leg) {
+  for (std::size_t i = 0; i < s.leg.size(); ++i) {
+    const auto& [c, k] = s.leg[i];
+    const bool turned = moved(s.leg_bone[i]);
     Dist e;
-    e.d = c.distance(p, &e.n);
+    e.d = c.distance(turned ? pose->to_rest(p) : p, &e.n);
+    if (turned) e.n = pose->rotation * e.n;
     d = smooth_union(d, e, k);
   }
-  if (p.y() < 0.1) {  // the foot
-    for (const auto& [c, k] : s.leg_cuts) d.d = -smooth_min(-d.d, c.distance(p), k);
+  const int ankle = s.leg_bone.back(), foot = ankle + 3;  // SMPL's order: foot = ankle + 3
+  const Vec3 pa = moved(ankle) ? pose->to_rest(p) : p;
+  const Vec3 pf = moved(foot) ? pose->to_rest(p) : p;
+  if (pa.y() < 0.1) {  // the foot
+    for (const auto& [c, k] : s.leg_cuts) d.d = -smooth_min(-d.d, c.distance(pa), k);
     Dist toes;
     double closest = 1e9;
     for (const Capsule& c : s.toes) {
       Dist e;
-      e.d = c.distance(p, &e.n);
+      e.d = c.distance(pf, &e.n);
+      if (moved(foot)) e.n = pose->rotation * e.n;
       toes.d = smooth_min(toes.d, e.d, 0.004);
       if (e.d < closest) {
         closest = e.d;
@@ -496,8 +528,8 @@ double Mannequin::trunk_field(const Vec3& p) const {
   return d;
 }
 
-double Mannequin::field(const Vec3& p) const {
-  double d = trunk_and_legs(p);
+double Mannequin::field(const Vec3& p, const JointPose* pose) const {
+  double d = trunk_and_legs(p, pose);
   // The head only where it can change the result (it blends in with radius 0.03).
   if ((p - head_centre_).norm() - head_radius_ <= d + 0.04) {
     double head = 1e9;
@@ -508,12 +540,12 @@ double Mannequin::field(const Vec3& p) const {
   }
   for (const Side& s : sides_) {
     const double k = 0.045 * (1.0 - smoothstep(0.10, 0.22, (p - s.shoulder).norm()));
-    d = smooth_min(d, arm_field(s, p), k);
+    d = smooth_min(d, arm_field(s, p, pose), k);
   }
   return d;
 }
 
-double Mannequin::trunk_and_legs(const Vec3& p) const {
+double Mannequin::trunk_and_legs(const Vec3& p, const JointPose* pose) const {
   // Between the crotch and the hip the field morphs from the two legs (below) into the trunk
   // (above): a convex combination of the two distance estimates, so the pelvis narrows into
   // the thighs without a seam. (Any union of the two, plain or smooth, left a band like a
@@ -525,7 +557,7 @@ double Mannequin::trunk_and_legs(const Vec3& p) const {
   const double t = std::clamp((p.y() - kMorphBottom) / (top - kMorphBottom), 0.0, 1.0);
   const double w = t * t * t * (t * (6 * t - 15) + 10);
   if (w >= 1.0) return trunk_field(p);
-  const Dist l0 = leg_field(sides_[0], p), l1 = leg_field(sides_[1], p);
+  const Dist l0 = leg_field(sides_[0], p, pose), l1 = leg_field(sides_[1], p, pose);
   const double legs = std::min(l0.d, l1.d);
   if (w <= 0.0) return legs;
   return w * trunk_field(p) + (1.0 - w) * legs;

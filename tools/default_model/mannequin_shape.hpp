@@ -100,11 +100,25 @@ struct TorsoLevel {
   double y, half_width, half_depth, z_center;
 };
 
+// One joint of the shape skeleton turned by `rotation` about its rest position, with everything
+// after it in the chain (`moved`, per joint of the 24): the template's own primitives follow
+// their bones, which makes a posed template that keeps its shape (pose_correctives.hpp).
+struct JointPose {
+  std::array<char, kJointCount> moved{};
+  Vec3 centre = Vec3::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Vec3 to_rest(const Vec3& p) const { return centre + rotation.transpose() * (p - centre); }
+};
+JointPose joint_pose(int joint, const Eigen::Matrix3d& rotation, const Skeleton& skeleton);
+
 class Mannequin {
  public:
   Mannequin();
 
-  double field(const Vec3& p) const;
+  double field(const Vec3& p) const { return field(p, nullptr); }
+  // The field of the template in a pose: only the limbs' primitives move (arms from the
+  // shoulder down, legs from the knee down), so poses of other joints are not supported.
+  double field(const Vec3& p, const JointPose* pose) const;
   Vec3 gradient(const Vec3& p) const;
   // Newton steps along the gradient onto the zero level set.
   Vec3 project(const Vec3& p, int iterations = 5) const;
@@ -118,19 +132,21 @@ class Mannequin {
  private:
   struct Side {
     std::vector<std::pair<Capsule, double>> arm;  // primitive, blend radius into the chain
+    std::vector<int> arm_bone;                    // the joint each arm primitive follows
     std::size_t hand_begin = 0;                   // arm[hand_begin..] make the fingers
     Vec3 hand_centre = Vec3::Zero();              // and lie within this sphere
     double hand_radius = 0;
     std::vector<std::pair<Capsule, double>> leg;
-    std::vector<Capsule> toes;                         // joined to the foot, grooved between
+    std::vector<int> leg_bone;  // the joint each leg primitive follows (the toes: the foot's)
+    std::vector<Capsule> toes;  // joined to the foot, grooved between
     std::vector<std::pair<Capsule, double>> leg_cuts;  // carved out of the foot (the arch)
     Vec3 shoulder;
   };
   double torso_loft(const Vec3& p) const;
-  double arm_field(const Side& s, const Vec3& p) const;
-  Dist leg_field(const Side& s, const Vec3& p) const;
+  double arm_field(const Side& s, const Vec3& p, const JointPose* pose) const;
+  Dist leg_field(const Side& s, const Vec3& p, const JointPose* pose) const;
   double trunk_field(const Vec3& p) const;  // loft and torso parts
-  double trunk_and_legs(const Vec3& p) const;
+  double trunk_and_legs(const Vec3& p, const JointPose* pose) const;
   // The trunk morphs into the legs between these heights (crotch to hip).
   static constexpr double kMorphBottom = 0.775, kMorphTop = 0.97;
 

@@ -18,6 +18,7 @@ namespace {
 
 constexpr int kBodyJoints = 22;  // SMPL's and SMPL-X's common first joints
 constexpr int kJaw = 22, kLeftEye = 23, kRightEye = 24, kHandsBegin = 25;
+constexpr double kTrunkRadius = 0.14;
 
 double segment_distance(const Vec3& p, const Segment& s, Vec3* closest) {
   const Vec3 ab = s.b - s.a;
@@ -45,17 +46,22 @@ SmplxRig smplx_rig(const Mannequin& mannequin) {
   for (int j = 0; j < kBodyJoints; ++j) {
     rig.parents[j] = joint_parents()[j];
     rig.joints[j] = sk.joints[j];
-    rig.segments[j].push_back({sk.bone_start[j], sk.bone_end[j]});
+    // The trunk, neck and head compare plain distances among themselves (one radius): their
+    // own radii differ so much that the thin neck and the spine's middle lost every vertex.
+    const bool trunk =
+        j == kPelvis || j == kSpine1 || j == kSpine2 || j == kSpine3 || j == kNeck || j == kHead;
+    rig.segments[j].push_back(
+        {sk.bone_start[j], sk.bone_end[j], trunk ? kTrunkRadius : sk.bone_radius[j]});
   }
   rig.head = kHead;
   rig.jaw = kJaw;
   rig.eyes = {kLeftEye, kRightEye};
   // The head also drives the face above the mouth (the skull's bone alone runs up its middle,
   // farther from the cheeks and nose than the jaw's).
-  rig.segments[kHead].push_back({sk.joints[kHead], lm.face});
+  rig.segments[kHead].push_back({sk.joints[kHead], lm.face, kTrunkRadius});
   rig.parents[kJaw] = kHead;
   rig.joints[kJaw] = lm.jaw;
-  rig.segments[kJaw].push_back({lm.jaw, lm.chin});
+  rig.segments[kJaw].push_back({lm.jaw, lm.chin, kTrunkRadius});
   for (int s = 0; s < 2; ++s) {
     rig.parents[kLeftEye + s] = kHead;
     rig.joints[kLeftEye + s] = lm.eye_centres[s];
@@ -65,12 +71,12 @@ SmplxRig smplx_rig(const Mannequin& mannequin) {
     rig.segments[wrist].clear();
     for (int f = 0; f < 5; ++f) {
       const FingerChain& chain = lm.fingers[s][f];
-      if (f < 4) rig.segments[wrist].push_back({sk.joints[wrist], chain.points[0]});
+      if (f < 4) rig.segments[wrist].push_back({sk.joints[wrist], chain.points[0], 0.018});
       for (int k = 0; k < 3; ++k) {
         const int j = kHandsBegin + 15 * s + 3 * f + k;
         rig.parents[j] = k == 0 ? wrist : j - 1;
         rig.joints[j] = chain.points[k];
-        rig.segments[j].push_back({chain.points[k], chain.points[k + 1]});
+        rig.segments[j].push_back({chain.points[k], chain.points[k + 1], f == 4 ? 0.011 : 0.008});
       }
     }
   }
@@ -126,7 +132,9 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
     std::vector<std::pair<double, int>> order;
     std::vector<Vec3> closest(sources.size());
     for (std::size_t i = 0; i < sources.size(); ++i)
-      order.push_back({segment_distance(P[v], *sources[i].segment, &closest[i]), int(i)});
+      order.push_back(
+          {segment_distance(P[v], *sources[i].segment, &closest[i]) / sources[i].segment->radius,
+           int(i)});
     std::sort(order.begin(), order.end());
     for (std::size_t r = 0; r < std::min<std::size_t>(order.size(), 8); ++r) {
       const Vec3& q = closest[order[r].second];
@@ -138,7 +146,9 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
       }
       if (visible) {
         nearest[v] = sources[order[r].second].joint;
-        const double d = std::max(order[r].first, 0.004);
+        const double d = std::max((P[v] - q).norm(), 0.004);
+        // Baran & Popovic's c = 1: larger c narrows the blend zones, which keeps more volume
+        // when a joint bends but folds more sharply (the pose benchmark at c = 4 and 16).
         heat[v] = 1.0 / (d * d);
         break;
       }
@@ -182,10 +192,14 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
     if (max_influences > 0 && max_influences < J) {
       std::vector<int> idx(J);
       std::iota(idx.begin(), idx.end(), 0);
-      std::partial_sort(idx.begin(), idx.begin() + max_influences, idx.end(), [&](int a, int b) {
-        return row[a] > row[b] || (row[a] == row[b] && a < b);
-      });
-      for (std::size_t k = max_influences; k < idx.size(); ++k) row[idx[k]] = 0.0;
+      std::partial_sort(
+          idx.begin(), idx.begin() + max_influences + 1, idx.end(),
+          [&](int a, int b) { return row[a] > row[b] || (row[a] == row[b] && a < b); });
+      // Less the first weight left out, so that a weight reaches 0 where it drops out of the
+      // largest four: cut off at its value, it left a step in the skin (a crack once posed).
+      const double cut = row[idx[max_influences]];
+      for (std::size_t k = 0; k < idx.size(); ++k)
+        row[idx[k]] = k < static_cast<std::size_t>(max_influences) ? row[idx[k]] - cut : 0.0;
     }
     for (int j = 0; j < J; ++j)
       if (row[j] < 1e-4) row[j] = 0.0;

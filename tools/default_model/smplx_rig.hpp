@@ -20,6 +20,7 @@ namespace default_model {
 
 struct Segment {
   Vec3 a, b;
+  double radius = 0.05;  // the limb's typical radius round it: distances are compared in radii
 };
 
 struct SmplxRig {
@@ -46,8 +47,10 @@ struct HeatWeightReport {
 // (L the cotangent Laplacian with its negative weights clamped to 0, so weights stay in [0, 1];
 // A the vertex areas; H = 1 / d^2 with d the distance to the nearest bone segment that the
 // vertex sees through the inside of the body, `inside` < 0 there; p_j = 1 where that bone is
-// j's). Then at most `max_influences` per vertex (the largest), rows renormalised to 1; the
-// jaw's weight above the mouth line goes to the head, eyeballs follow their eye alone.
+// j's). Nearest in units of each segment's radius: measured in metres, the chest's sides and
+// the lower belly lie nearer the thin arm and thigh bones than the trunk's, and went with them.
+// Then at most `max_influences` per vertex (the largest), rows renormalised to 1; the jaw's weight
+// above the mouth line goes to the head, eyeballs follow their eye alone.
 Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
                              const std::function<double(const Vec3&)>& inside, int max_influences,
                              HeatWeightReport* report = nullptr);

@@ -16,7 +16,9 @@ namespace default_model {
 
 namespace {
 
-// Body parts before the splits that make charts of them.
+// Body parts before the splits that make charts of them (the charts' parts, 0..19: torso front
+// and back, face, back of the head, eyes, arms, hands' backs and palms, legs, feet's tops and
+// soles, the head's sides).
 enum Group { kGroupTorso, kGroupHead, kGroupEye, kGroupArm, kGroupHand, kGroupLeg, kGroupFoot };
 
 struct JointGroup {
@@ -195,8 +197,16 @@ UvLayout uv_layout(const TriMesh& mesh, const SmplxRig& rig, const Eigen::Matrix
       case kGroupTorso:  // front and back, parted down the sides
         part = centre.z() > -0.012 ? 0 : 1;
         break;
-      case kGroupHead:  // the face with the ears, and the back of the head behind them
-        part = centre.z() > -0.035 ? 2 : 3;
+      case kGroupHead:
+        // The face (in front of the cheekbones, above the chin), the back of the head behind
+        // the ears, and each side between them with its ear and the side of the neck: as one
+        // chart the head's front half shrank the face to a fraction of its share of texture.
+        if (centre.z() < -0.035)
+          part = 3;
+        else if (centre.z() > 0.035 && centre.y() > 1.47)
+          part = 2;
+        else
+          part = centre.x() > 0 ? 18 : 19;
         break;
       case kGroupEye:
         part = 4 + side;

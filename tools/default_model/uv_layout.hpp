@@ -2,9 +2,10 @@
 // origin bottom left) and `ft` (F x 3, indices into vt). Charts follow the body's parts, with
 // seams where artists put them: round the neck, shoulders, wrists, hips and ankles; along the
 // inner arms and legs; down the sides of the torso; behind the head (a vertical plane behind
-// the ears); between the back and palm of each hand and between sole and top of each foot.
-// Each chart is flattened by least squares conformal maps (Levy, Petitjean, Ray & Maillot
-// 2002), scaled to its surface area (one texel density everywhere) and packed into [0, 1]^2.
+// the ears) and round the face (in front of the cheekbones); between the back and palm of each hand
+// and between sole and top of each foot. Each chart is flattened by least squares conformal maps
+// (Levy, Petitjean, Ray & Maillot 2002), scaled to its surface area (one texel density everywhere)
+// and packed into [0, 1]^2.
 #pragma once
 
 #include <array>

@@ -1,0 +1,214 @@
+#include "pose_correctives.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+namespace default_model {
+
+namespace {
+
+Eigen::Matrix3d turn(const Vec3& axis, double degrees) {
+  return Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+}
+
+// The smallest rotation taking direction a onto direction b.
+Eigen::Matrix3d between(const Vec3& a, const Vec3& b) {
+  return Eigen::Quaterniond::FromTwoVectors(a, b).toRotationMatrix();
+}
+
+// Rotations of one joint that people make, the joint's range in the body's frame (y up, +z
+// forward, the subject's left +x; sx = +1 left, -1 right): the linear fit in R - I is only as
+// good as its samples are like the poses it is used for.
+std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
+  const int side = (joint == kLeftShoulder || joint == kLeftElbow || joint == kLeftWrist ||
+                    joint == kLeftKnee || joint == kLeftAnkle)
+                       ? 0
+                       : 1;
+  const double sx = side == 0 ? 1.0 : -1.0;
+  const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+  std::vector<Eigen::Matrix3d> out;
+  const auto dir = [&](int a, int b) { return (rig.joints[b] - rig.joints[a]).normalized(); };
+  if (joint == kLeftShoulder || joint == kRightShoulder) {
+    const Vec3 d = dir(joint, joint + 2);  // to the elbow
+    // Up the side (abduction) to 170 degrees from hanging, down to the body, forward and up,
+    // back, and turned about the arm.
+    for (double a : {10.0, 80.0, 120.0, 170.0})
+      out.push_back(between(d, Vec3(sx * std::sin(a * M_PI / 180), -std::cos(a * M_PI / 180), 0)));
+    for (double a : {45.0, 90.0, 150.0})
+      out.push_back(between(
+          d, Vec3(0.2 * sx, -std::cos(a * M_PI / 180), std::sin(a * M_PI / 180)).normalized()));
+    out.push_back(between(d, Vec3(0.3 * sx, -0.8, -0.5).normalized()));
+    for (double a : {-60.0, 60.0}) out.push_back(turn(d, a));
+  } else if (joint == kLeftElbow || joint == kRightElbow) {
+    const Vec3 d = dir(joint - 2, joint);        // the upper arm
+    const Vec3 f = dir(joint, joint + 2);        // the forearm
+    const Vec3 hinge = d.cross(Z).normalized();  // turns the forearm forwards
+    for (double a : {30.0, 60.0, 90.0, 130.0, 150.0}) out.push_back(turn(hinge, a));
+    for (double a : {-90.0, -45.0, 45.0, 90.0}) out.push_back(turn(f, a));
+  } else if (joint == kLeftWrist || joint == kRightWrist) {
+    const Vec3 f = dir(joint - 2, joint);
+    // The palm faces the thigh in the A-pose: flexion turns the hand towards -x (left hand).
+    const Vec3 palm = (Vec3(-sx, 0, 0) - f * f.dot(Vec3(-sx, 0, 0))).normalized();
+    const Vec3 flex = f.cross(palm).normalized();
+    for (double a : {-60.0, -30.0, 30.0, 60.0, 80.0}) out.push_back(turn(flex, a));
+    for (double a : {-30.0, 30.0}) out.push_back(turn(palm, a));
+  } else if (joint == kLeftKnee || joint == kRightKnee) {
+    for (double a : {30.0, 60.0, 90.0, 130.0, 150.0}) out.push_back(turn(X, a));
+    out.push_back(turn(X, -5.0));
+  } else if (joint == kLeftAnkle || joint == kRightAnkle) {
+    for (double a : {-40.0, -20.0, 20.0, 40.0}) out.push_back(turn(X, a));
+    for (double a : {-20.0, 20.0}) out.push_back(turn(Z, a));
+  }
+  (void)Y;
+  return out;
+}
+
+struct JointFit {
+  std::vector<int> zone;                                  // blend zone vertices
+  std::vector<Eigen::Matrix<double, 3, 9>> coefficients;  // per zone vertex
+  double skinning_error = 0, fitted_error = 0;            // sums over samples and vertices
+  long count = 0;
+  int poses = 0;
+};
+
+Vec3 project(const Mannequin& m, const JointPose& pose, const Vec3& start) {
+  Vec3 q = start;
+  for (int it = 0; it < 8; ++it) {
+    const double f = m.field(q, &pose);
+    if (std::abs(f) < 1e-6) break;
+    Vec3 g;
+    const double e = 1e-5;
+    for (int a = 0; a < 3; ++a) {
+      Vec3 u = q, w = q;
+      u[a] += e;
+      w[a] -= e;
+      g[a] = (m.field(u, &pose) - m.field(w, &pose)) / (2 * e);
+    }
+    const double g2 = g.squaredNorm();
+    if (g2 < 1e-12) break;
+    Vec3 step = f * g / g2;
+    if (step.norm() > 0.01) step *= 0.01 / step.norm();
+    q -= step;
+  }
+  return q;
+}
+
+JointFit fit_joint(const Mannequin& mannequin, const TriMesh& mesh, const SmplxRig& rig,
+                   const Eigen::VectorXd& share, int joint) {
+  const auto& P = mesh.vertices;
+  const int V = static_cast<int>(P.size());
+  JointFit fit;
+  for (int v = 0; v < V; ++v)
+    if (share[v] > 0.005 && share[v] < 0.995) fit.zone.push_back(v);
+  const std::vector<Eigen::Matrix3d> rotations = joint_rotations(joint, rig);
+  const int S = static_cast<int>(rotations.size()), n = static_cast<int>(fit.zone.size());
+  if (n == 0 || S == 0) return fit;
+  const Vec3 c = rig.joints[joint];
+  Eigen::MatrixXd features(9, S);
+  std::vector<Eigen::MatrixXd> targets(n, Eigen::MatrixXd::Zero(3, S));
+  for (int s = 0; s < S; ++s) {
+    const Eigen::Matrix3d& R = rotations[s];
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> d = R - Eigen::Matrix3d::Identity();
+    features.col(s) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data());
+    const JointPose pose = joint_pose(joint, R, mannequin.skeleton());
+    for (int i = 0; i < n; ++i) {
+      const int v = fit.zone[i];
+      const Vec3 skinned = (1.0 - share[v]) * P[v] + share[v] * (c + R * (P[v] - c));
+      const Vec3 target = project(mannequin, pose, skinned);
+      Vec3 r = target - skinned;
+      // Farther than 3 cm the projection found another part of the body (the forearm pressed
+      // into the biceps): nothing to learn there.
+      if (r.norm() > 0.03) r.setZero();
+      const Eigen::Matrix3d M = (1.0 - share[v]) * Eigen::Matrix3d::Identity() + share[v] * R;
+      targets[i].col(s) = M.inverse() * r;
+      fit.skinning_error += r.norm();
+    }
+  }
+  // Ridge regression of each vertex's offsets on the nine features (one normal matrix).
+  const Eigen::Matrix<double, 9, 9> gram = features * features.transpose();
+  const Eigen::Matrix<double, 9, 9> inverse =
+      (gram + 1e-3 * gram.trace() / 9.0 * Eigen::Matrix<double, 9, 9>::Identity()).inverse();
+  fit.coefficients.resize(n);
+  for (int i = 0; i < n; ++i) {
+    fit.coefficients[i] = targets[i] * features.transpose() * inverse;
+    const Eigen::MatrixXd residual = targets[i] - fit.coefficients[i] * features;
+    const int v = fit.zone[i];
+    for (int s = 0; s < S; ++s) {
+      const Eigen::Matrix3d M =
+          (1.0 - share[v]) * Eigen::Matrix3d::Identity() + share[v] * rotations[s];
+      fit.fitted_error += (M * residual.col(s)).norm();
+    }
+  }
+  fit.count = static_cast<long>(n) * S;
+  fit.poses = S;
+  return fit;
+}
+
+}  // namespace
+
+Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& mesh,
+                                     const SmplxRig& rig, const Eigen::MatrixXd& weights,
+                                     int threads, PoseCorrectiveReport* report) {
+  const int V = static_cast<int>(mesh.vertices.size());
+  const int J = rig.size();
+  std::vector<std::vector<char>> in_subtree(J, std::vector<char>(J, 0));
+  for (int j = 0; j < J; ++j)
+    for (int k = j; k >= 0; k = rig.parents[k]) in_subtree[k][j] = 1;
+  // Elbows, knees and ankles. The shoulders and wrists are left out: there the posed union
+  // of primitives is not a surface the skin can follow (the projection of the armpit's and
+  // the palm's vertices jumped between the arm and the chest, or the palm and the fingers, and
+  // tore the skin in the pose benchmark).
+  const std::vector<int> joints = {kLeftElbow, kRightElbow, kLeftKnee,
+                                   kRightKnee, kLeftAnkle,  kRightAnkle};
+  std::vector<JointFit> fits(joints.size());
+  std::vector<std::thread> pool;
+  const int workers = std::max(1, threads);
+  for (int w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      for (std::size_t i = w; i < joints.size(); i += workers) {
+        Eigen::VectorXd share = Eigen::VectorXd::Zero(V);
+        for (int k = 0; k < J; ++k)
+          if (in_subtree[joints[i]][k]) share += weights.col(k);
+        fits[i] = fit_joint(mannequin, mesh, rig, share, joints[i]);
+      }
+    });
+  for (auto& th : pool) th.join();
+
+  Eigen::MatrixXf posedirs = Eigen::MatrixXf::Zero(3 * V, 9 * (J - 1));
+  PoseCorrectiveReport r;
+  double skin = 0, fitted = 0;
+  long count = 0;
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const JointFit& fit = fits[i];
+    if (fit.count == 0) continue;
+    ++r.joints;
+    r.poses += fit.poses;
+    for (std::size_t k = 0; k < fit.zone.size(); ++k)
+      posedirs.block<3, 9>(3 * fit.zone[k], 9 * (joints[i] - 1)) =
+          fit.coefficients[k].cast<float>();
+    skin += fit.skinning_error;
+    fitted += fit.fitted_error;
+    count += fit.count;
+  }
+  r.skinning_error_mm = count ? 1e3 * skin / count : 0;
+  r.fitted_error_mm = count ? 1e3 * fitted / count : 0;
+  if (report) *report = r;
+  return posedirs;
+}
+
+std::string PoseCorrectiveReport::describe() const {
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "pose correctives for %d joints from %d posed templates: skinning %.1f mm from "
+                "the posed template on average in the blend zones, %.1f mm with the correctives",
+                joints, poses, skinning_error_mm, fitted_error_mm);
+  return buf;
+}
+
+}  // namespace default_model
