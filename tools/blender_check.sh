@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Exports the default body in each preset and imports every file into Blender headless with
-# tools/blender_inspect.py (bone directions, shape keys, heights), then renders the .vrm in a
-# fist, an 80-degree arm raise, a 130-degree knee and with a checkerboard on its UVs
+# tools/blender_inspect.py (bone directions, shape keys, heights), then renders the body in a
+# fist, an 80-degree arm raise, a 130-degree knee and with a checkerboard on its UVs (the
+# blender preset's file, A-pose rest)
 # (OUT_DIR/rig/*.png: look at them). Not part of CI: Blender is
 # a large optional package (Debian 12: apt-get install blender).
 # usage: tools/blender_check.sh [BUILD_DIR] [OUT_DIR]
@@ -26,7 +27,8 @@ done
 echo "== preset blender, Bone Dir = Blender (each joint's local +Y)"
 blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- \
   "$out/blender.glb" --bone-dir BLENDER 2>&1 | grep -E "^file|worst|^height" || exit 1
-echo "== rig check (vrm preset): a fist, an 80-degree arm raise, a 130-degree knee, a checkerboard"
+# From the blender preset's A-pose rest, as a rigger posing the .glb would.
+echo "== rig check (blender preset): a fist, an 80-degree arm raise, a 130-degree knee, a checkerboard"
 mkdir -p "$out/rig"
 blender -b --factory-startup --python-exit-code 1 -P tools/blender_inspect.py -- \
-  "$out/vrm.vrm" --rig-check "$out/rig" 2>&1 | grep -E "^file|^armature|finger bones|^rendered|^no " || exit 1
+  "$out/blender.glb" --rig-check "$out/rig" 2>&1 | grep -E "^file|^armature|finger bones|^rendered|^no " || exit 1

@@ -144,10 +144,15 @@ def rig_check(outdir):
 
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
-    scene.cycles.samples = 8
+    scene.cycles.samples = 24
     scene.cycles.use_denoising = False
     scene.view_layers[0].cycles.use_denoising = False
     scene.render.resolution_x, scene.render.resolution_y = 400, 440
+    # A grey sky lights every side (the back view was black under the sun alone).
+    world = bpy.data.worlds.new("rig_world")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.5, 0.5, 0.52, 1.0)
+    scene.world = world
     cam = bpy.data.objects.new("rig_cam", bpy.data.cameras.new("rig_cam"))
     cam.data.type = "ORTHO"
     scene.collection.objects.link(cam)
@@ -198,23 +203,52 @@ def rig_check(outdir):
                     "Little", "Thumb")
     fingers = [pb for pb in arm.pose.bones if any(w in pb.name for w in finger_words)]
     print(f"finger bones: {len(fingers)}")
-    # A fist: each finger bone turns 80 degrees about its own x axis (the exporter keeps x
-    # across the finger, at right angles to the palm's normal and the bone).
+    # A fist: each finger bone turns 80 degrees (the thumb's 50) towards the palm, about the
+    # axis across the finger in the palm's plane, found from the rest skeleton: the palm faces
+    # s (h x w), h the wrist-to-middle-knuckle direction, w the little-to-index knuckle one,
+    # s = +1 on the left hand, -1 on the right.
     reset()
-    for pb in fingers:
-        pb.rotation_mode = "XYZ"
-        pb.rotation_euler = (math.radians(80), 0.0, 0.0)
+
+    def rest_head(name):
+        b = arm.data.bones.get(name)
+        return b.head_local if b else None
+
+    for side, names in (
+        (1.0, ("left_wrist", "left_middle1", "left_pinky1", "left_index1")),
+        (-1.0, ("right_wrist", "right_middle1", "right_pinky1", "right_index1")),
+        (1.0, ("leftHand", "leftMiddleProximal", "leftLittleProximal", "leftIndexProximal")),
+        (-1.0, ("rightHand", "rightMiddleProximal", "rightLittleProximal", "rightIndexProximal")),
+    ):
+        heads = [rest_head(n) for n in names]
+        if any(h is None for h in heads):
+            continue
+        h = (heads[1] - heads[0]).normalized()
+        w = (heads[3] - heads[2]).normalized()
+        palm = side * h.cross(w).normalized()
+        prefix = names[0].replace("_wrist", "_").replace("Hand", "")
+        for pb in fingers:
+            if not pb.name.startswith(prefix):
+                continue
+            d = (pb.bone.tail_local - pb.bone.head_local).normalized()
+            axis = d.cross(palm)
+            if axis.length < 1e-6:
+                continue
+            local = pb.bone.matrix_local.to_3x3().inverted() @ axis.normalized()
+            angle = 50 if "thumb" in pb.name.lower() else 80
+            pb.rotation_mode = "QUATERNION"
+            pb.rotation_quaternion = mathutils.Quaternion(local.normalized(), math.radians(angle))
     bpy.context.view_layer.update()
     hand = head_of(("left_wrist", "leftHand", "hand_l"))
-    look(hand, 0.35, -60)
-    render("fist.png", f"{len(fingers)} finger bones at 80 degrees, left hand")
+    look(hand, 0.3, 30)
+    render("fist.png", f"{len(fingers)} finger bones at 80 degrees (thumbs 50), left hand")
     # The left arm raised to 80 degrees from hanging, in the frontal plane.
     reset()
     shoulder = head_of(("left_shoulder", "leftUpperArm", "upperarm_l"))
     elbow = head_of(("left_elbow", "leftLowerArm", "lowerarm_l"))
     now = (elbow - shoulder).normalized()
     target = mathutils.Vector((math.sin(math.radians(80)), 0.0, -math.cos(math.radians(80))))
-    turn_bone(("left_shoulder", "leftUpperArm", "upperarm_l"), now.rotation_difference(target))
+    turn_bone(("left_shoulder", "leftUpperArm", "upperarm_l"),
+              now.rotation_difference(target).to_matrix())
     look(shoulder, 0.9, 0)
     render("arm_raise_80.png", "left upper arm 80 degrees from hanging, front")
     # The left knee bent 130 degrees (the shin backwards: Blender's +Y is the body's back).
@@ -222,7 +256,7 @@ def rig_check(outdir):
     knee = head_of(("left_knee", "leftLowerLeg", "calf_l"))
     turn_bone(("left_knee", "leftLowerLeg", "calf_l"),
               mathutils.Matrix.Rotation(math.radians(130), 3, "X"))
-    look(knee, 1.0, -90)
+    look(knee, 1.0, 90)
     render("knee_130.png", "left knee bent 130 degrees, seen from the left side")
     # A checkerboard on the UVs, front and back.
     reset()
