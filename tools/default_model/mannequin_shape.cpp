@@ -563,24 +563,24 @@ double Mannequin::trunk_and_legs(const Vec3& p, const JointPose* pose) const {
   return w * trunk_field(p) + (1.0 - w) * legs;
 }
 
-Vec3 Mannequin::gradient(const Vec3& p) const {
+Vec3 Mannequin::gradient(const Vec3& p, const JointPose* pose) const {
   const double e = 1e-5;
   Vec3 g;
   for (int i = 0; i < 3; ++i) {
     Vec3 a = p, b = p;
     a[i] += e;
     b[i] -= e;
-    g[i] = (field(a) - field(b)) / (2 * e);
+    g[i] = (field(a, pose) - field(b, pose)) / (2 * e);
   }
   return g;
 }
 
-Vec3 Mannequin::project(const Vec3& p, int iterations) const {
+Vec3 Mannequin::project(const Vec3& p, int iterations, const JointPose* pose) const {
   Vec3 q = p;
   for (int it = 0; it < iterations; ++it) {
-    const double f = field(q);
+    const double f = field(q, pose);
     if (std::abs(f) < 1e-7) break;
-    const Vec3 g = gradient(q);
+    const Vec3 g = gradient(q, pose);
     const double g2 = g.squaredNorm();
     if (g2 < 1e-12) break;
     Vec3 step = f * g / g2;

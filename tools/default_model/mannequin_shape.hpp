@@ -119,9 +119,9 @@ class Mannequin {
   // The field of the template in a pose: only the limbs' primitives move (arms from the
   // shoulder down, legs from the knee down), so poses of other joints are not supported.
   double field(const Vec3& p, const JointPose* pose) const;
-  Vec3 gradient(const Vec3& p) const;
+  Vec3 gradient(const Vec3& p, const JointPose* pose = nullptr) const;
   // Newton steps along the gradient onto the zero level set.
-  Vec3 project(const Vec3& p, int iterations = 5) const;
+  Vec3 project(const Vec3& p, int iterations = 5, const JointPose* pose = nullptr) const;
   // Desired edge length of the output mesh near p (finer at hands, face and feet).
   double target_edge(const Vec3& p) const;
 

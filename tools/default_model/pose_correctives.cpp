@@ -77,28 +77,6 @@ struct JointFit {
   int poses = 0;
 };
 
-Vec3 project(const Mannequin& m, const JointPose& pose, const Vec3& start) {
-  Vec3 q = start;
-  for (int it = 0; it < 8; ++it) {
-    const double f = m.field(q, &pose);
-    if (std::abs(f) < 1e-6) break;
-    Vec3 g;
-    const double e = 1e-5;
-    for (int a = 0; a < 3; ++a) {
-      Vec3 u = q, w = q;
-      u[a] += e;
-      w[a] -= e;
-      g[a] = (m.field(u, &pose) - m.field(w, &pose)) / (2 * e);
-    }
-    const double g2 = g.squaredNorm();
-    if (g2 < 1e-12) break;
-    Vec3 step = f * g / g2;
-    if (step.norm() > 0.01) step *= 0.01 / step.norm();
-    q -= step;
-  }
-  return q;
-}
-
 JointFit fit_joint(const Mannequin& mannequin, const TriMesh& mesh, const SmplxRig& rig,
                    const Eigen::VectorXd& share, int joint) {
   const auto& P = mesh.vertices;
@@ -120,7 +98,7 @@ JointFit fit_joint(const Mannequin& mannequin, const TriMesh& mesh, const SmplxR
     for (int i = 0; i < n; ++i) {
       const int v = fit.zone[i];
       const Vec3 skinned = (1.0 - share[v]) * P[v] + share[v] * (c + R * (P[v] - c));
-      const Vec3 target = project(mannequin, pose, skinned);
+      const Vec3 target = mannequin.project(skinned, 8, &pose);
       Vec3 r = target - skinned;
       // Farther than 3 cm the projection found another part of the body (the forearm pressed
       // into the biceps): nothing to learn there.
