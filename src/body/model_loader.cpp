@@ -104,15 +104,15 @@ std::vector<std::string> read_joint_names(const NpzArchive& npz, std::size_t J) 
 // `shapedirs`: 300 + 100 in v1.1 (400 columns), 10 + 10 in v1.0 (20 columns). Any other
 // skeleton has shape components only.
 long long shape_columns(const NpzArchive& npz, long long joints, long long columns) {
-  // A file that says how many shape components it has (the built-in models' variance_share,
-  // one entry per component) is believed; it is checked against (K,) when read.
+  if (joints != 55) return columns;
+  // A 55-joint file that says how many shape components it has (the built-in models'
+  // variance_share, one entry per component) is believed; it is checked against (K,) when read.
   if (npz.contains("variance_share")) {
     const NpyHeader h = npz.header("variance_share");
     if (!h.needs_pickle() && h.shape.size() == 1 && h.shape[0] >= 1 &&
         static_cast<long long>(h.shape[0]) <= columns)
       return static_cast<long long>(h.shape[0]);
   }
-  if (joints != 55) return columns;
   return columns > 300 ? 300 : (columns + 1) / 2;
 }
 

@@ -136,6 +136,41 @@ TEST_CASE("loader columns: SMPL-X's expression columns come from after the shape
   }
 }
 
+TEST_CASE("loader columns: a 55-joint file's variance_share says all its columns are shapes",
+          "[loader][columns]") {
+  // The built-in models: SMPL-X's skeleton, 16 shape components and no expressions; their
+  // variance_share (one entry per shape component) keeps them from being read as 8 + 8.
+  fixtures::Cylinder c;
+  c.joints = 55;
+  c.components = 16;
+  ArrayMap arrays = fixtures::cylinder_model(c);
+  Array share;
+  share.shape = {16};
+  share.values.assign(16, 1.0 / 16);
+  arrays["variance_share"] = share;
+  const auto path = write_variant("columns-share", arrays, all_variants().front());
+  const body::Model m = body::load_model(path, 0, 4);
+  CHECK(m.total_components == 16);
+  CHECK(m.total_expressions == 0);
+  CHECK(m.expression_dirs.size() == 0);
+  CHECK(max_abs_diff(m.shapedirs, fixture_columns(arrays.at("shapedirs"), 0, 16)) <= 1e-7);
+  // Longer than shapedirs has columns, it is not believed, and the mismatch is an error.
+  share.shape = {20};
+  share.values.assign(20, 0.05);
+  arrays["variance_share"] = share;
+  const auto bad = write_variant("columns-share-bad", arrays, all_variants().front());
+  CHECK_THAT(error_of([&] { body::load_model(bad, 0); }), Catch::Contains("variance_share"));
+  // Other skeletons keep every column as a shape component whatever variance_share says.
+  fixtures::Cylinder smpl;
+  smpl.components = 16;
+  ArrayMap arrays24 = fixtures::cylinder_model(smpl);
+  share.shape = {10};
+  share.values.assign(10, 0.1);
+  arrays24["variance_share"] = share;
+  const auto p24 = write_variant("columns-share-24", arrays24, all_variants().front());
+  CHECK_THAT(error_of([&] { body::load_model(p24, 0); }), Catch::Contains("variance_share"));
+}
+
 TEST_CASE("loader columns: columns far apart are reached by seeking or inflating past the gap",
           "[loader][columns]") {
   // SMPL-X's layout with 100 + 100 columns: in Fortran order the expression columns lie 1.5 MB
