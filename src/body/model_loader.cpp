@@ -22,6 +22,11 @@ namespace body {
 
 namespace {
 
+// A built-in model's `source` (and the name its errors carry): "<embedded NAME>".
+std::string embedded_source(const std::string& name) {
+  return "<embedded " + name + ">";
+}
+
 constexpr std::int64_t kRootParentU32 = 4294967295LL;  // -1 stored as uint32
 
 std::vector<int> read_parents(const NpzArchive& npz, long long joints) {
@@ -287,17 +292,13 @@ Model load_from_archive(const NpzArchive& npz, int components, const std::string
 
 void load_pose_correctives(Model& model) {
   if (model.posedirs.size() > 0) return;
-  // A built-in model reads them from the embedded bytes ("<embedded NAME>"), a file's from the
-  // file; models from memory have none to read.
-  const std::string prefix = "<embedded ";
-  const std::string& source = model.source;
-  if (source.size() > prefix.size() + 1 && source.compare(0, prefix.size(), prefix) == 0 &&
-      source.back() == '>') {
-    const std::string name = source.substr(prefix.size(), source.size() - prefix.size() - 1);
-    if (is_builtin_model_name(name))
+  // A built-in model reads them from the embedded bytes, a file's from the file; models from
+  // memory have none to read.
+  for (const std::string& name : builtin_model_names())
+    if (model.source == embedded_source(name)) {
       read_posedirs(open_builtin_model_archive(name), model.vertex_count(), &model.posedirs);
-    return;
-  }
+      return;
+    }
   std::error_code ec;
   if (!std::filesystem::is_regular_file(model.source, ec)) return;
   const NpzArchive npz = NpzArchive::open_file(model.source);
@@ -363,9 +364,9 @@ NpzArchive open_builtin_model_archive(const std::string& name) {
     end = sg_model_male_end;
   }
   return NpzArchive::open_memory(begin, static_cast<std::size_t>(end - begin),
-                                 "<embedded " + name + ">");
+                                 embedded_source(name));
 #else
-  throw ModelError("<embedded " + name + ">: the default models were not built in (assets/body_" +
+  throw ModelError(embedded_source(name) + ": the default models were not built in (assets/body_" +
                    name +
                    ".npz did not exist when the project was configured; generate them with "
                    "`sequential-gallery generate-default-model` and re-run cmake, or pass "

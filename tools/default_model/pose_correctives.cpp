@@ -31,7 +31,7 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
                        ? 0
                        : 1;
   const double sx = side == 0 ? 1.0 : -1.0;
-  const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+  const Vec3 X(1, 0, 0), Z(0, 0, 1);
   std::vector<Eigen::Matrix3d> out;
   const auto dir = [&](int a, int b) { return (rig.joints[b] - rig.joints[a]).normalized(); };
   if (joint == kLeftShoulder || joint == kRightShoulder) {
@@ -65,7 +65,6 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
     for (double a : {-40.0, -20.0, 20.0, 40.0}) out.push_back(turn(X, a));
     for (double a : {-20.0, 20.0}) out.push_back(turn(Z, a));
   }
-  (void)Y;
   return out;
 }
 

@@ -8,15 +8,14 @@
 
 namespace default_model {
 
-namespace {
-
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b, Vec3* closest) {
   const Vec3 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  const Vec3 c = a + t * ab;
+  if (closest) *closest = c;
+  return (p - c).norm();
 }
-
-}  // namespace
 
 Eigen::MatrixXd skin_weights(const std::vector<Vec3>& vertices, const Skeleton& skeleton,
                              double softness, int max_influences) {

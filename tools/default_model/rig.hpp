@@ -10,6 +10,10 @@
 
 namespace default_model {
 
+// Distance from p to the segment a-b (a point when a == b); `closest` (optional) gets the
+// segment's point nearest p.
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b, Vec3* closest = nullptr);
+
 // V x 24 weights from distances to the bones, normalised by each bone's radius:
 // w_j ~ exp(-((d_j - d_min) / softness)^2), at most `max_influences` non-zero per vertex
 // (0 = all), rows summing to 1.

@@ -20,14 +20,6 @@ constexpr int kBodyJoints = 22;  // SMPL's and SMPL-X's common first joints
 constexpr int kJaw = 22, kLeftEye = 23, kRightEye = 24, kHandsBegin = 25;
 constexpr double kTrunkRadius = 0.14;
 
-double segment_distance(const Vec3& p, const Segment& s, Vec3* closest) {
-  const Vec3 ab = s.b - s.a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  *closest = s.a + t * ab;
-  return (p - *closest).norm();
-}
-
 }  // namespace
 
 SmplxRig smplx_rig(const Mannequin& mannequin) {
@@ -133,7 +125,8 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
     std::vector<Vec3> closest(sources.size());
     for (std::size_t i = 0; i < sources.size(); ++i)
       order.push_back(
-          {segment_distance(P[v], *sources[i].segment, &closest[i]) / sources[i].segment->radius,
+          {segment_distance(P[v], sources[i].segment->a, sources[i].segment->b, &closest[i]) /
+               sources[i].segment->radius,
            int(i)});
     std::sort(order.begin(), order.end());
     for (std::size_t r = 0; r < std::min<std::size_t>(order.size(), 8); ++r) {

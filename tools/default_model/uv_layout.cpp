@@ -289,10 +289,7 @@ UvLayout uv_layout(const TriMesh& mesh, const SmplxRig& rig, const Eigen::Matrix
 
   // 2. Seams: the charts' borders, and a cut along the inner side of each arm and leg (they
   //    are tubes: open at both ends, they need one cut to unroll).
-  std::vector<Vec3> vertex_normal(V, Vec3::Zero());
-  for (int f = 0; f < F; ++f)
-    for (int c = 0; c < 3; ++c) vertex_normal[mesh.faces[f][c]] += face_normal(mesh, f);
-  for (auto& n : vertex_normal) n.normalize();
+  const std::vector<Vec3> vertex_normal = vertex_normals(mesh);
   std::unordered_map<Edge, bool> cut;
   for (int c = 0; c < charts; ++c) {
     int any = -1;
