@@ -18,7 +18,6 @@
 #include "app/gallery_view.hpp"
 #include "app/ui_prefs.hpp"
 #include "render/png_writer.hpp"
-#include "spaces/space_factory.hpp"
 
 namespace app {
 
@@ -35,6 +34,10 @@ WorkArea primary_work_area() {
     glfwGetMonitorWorkarea(monitor, &x, &y, &area.w, &area.h);
   }
   return area;
+}
+
+SpaceOpener space_opener(const SpaceCatalogue& catalogue) {
+  return [&catalogue](const SpaceSettings& s) { return catalogue.open(s); };
 }
 
 double seconds_since(Clock::time_point t) {
@@ -304,7 +307,7 @@ int GalleryWindow::run() {
     controller_ = std::make_unique<GalleryController>(options_.benchmark_clicks > 0
                                                           ? controller_options(options_)
                                                           : controller_options(options_, prefs),
-                                                      &spaces::open_space, now());
+                                                      space_opener(*options_.catalogue), now());
   } catch (const std::exception& e) {
     std::cerr << "sequential-gallery: " << e.what() << "\n";
     return 1;
@@ -330,7 +333,7 @@ int GalleryWindow::run() {
   vo.save_path = options_.save_path;
   vo.report_layout = options_.report_layout;
   vo.file_dialog = options_.file_dialog;
-  view_ = std::make_unique<GalleryView>(vo, prefs);
+  view_ = std::make_unique<GalleryView>(vo, prefs, *options_.catalogue);
   if (!prefs_path_.empty() && options_.benchmark_clicks == 0) {
     prefs_saver_.emplace(prefs_path_, load_ui_prefs(prefs_path_));
   }
@@ -424,12 +427,14 @@ int GalleryWindow::run() {
 }  // namespace
 
 ControllerOptions controller_options(const GalleryOptions& o) {
+  if (o.catalogue == nullptr) throw std::logic_error("the gallery needs a catalogue of spaces");
+  const SpaceKind& kind = o.space.empty() ? o.catalogue->default_kind() : o.catalogue->get(o.space);
   ControllerOptions c;
-  c.space.kind = o.space;
+  c.space.kind = kind.name;
   c.space.source = o.source.value_or("");
   // A space named on the command line (--space, --model, --image) is what the user asked for.
   c.space_chosen = o.space_given || o.source.has_value();
-  c.space.dimensions = o.space == "photo" ? 12 : o.components;
+  c.space.dimensions = kind.dimensions_fixed || o.components <= 0 ? kind.dimensions : o.components;
   c.grid_size = o.grid_size;
   c.zoom_levels = o.zoom_levels;
   c.seed = o.seed;
@@ -446,7 +451,8 @@ ControllerOptions controller_options(const GalleryOptions& o) {
 
 ControllerOptions controller_options(const GalleryOptions& o, const UiPrefs& prefs) {
   ControllerOptions c = controller_options(o);
-  if (o.space == "body" && !o.source) c.space.source = prefs.body_model;
+  const SpaceKind& kind = o.catalogue->get(c.space.kind);
+  if (!o.source && kind.remembered_source) c.space.source = kind.remembered_source(prefs.sources);
   return c;
 }
 

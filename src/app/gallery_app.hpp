@@ -11,17 +11,21 @@
 #include <string>
 
 #include "app/gallery_controller.hpp"
+#include "app/space_catalogue.hpp"
 #include "app/ui_prefs.hpp"
 #include "render/camera.hpp"
 
 namespace app {
 
 struct GalleryOptions {
-  std::string space = "body";         // design space kind: body | photo
+  // The kinds of design space the window can search (the command line's catalogue); must be
+  // set, and outlive the window.
+  const SpaceCatalogue* catalogue = nullptr;
+  std::string space;                  // design space kind; empty: the catalogue's default
   bool space_given = false;           // --space was on the command line
-  std::optional<std::string> source;  // --model / --image; none: the built-in default
-  int components = 10;                // body: shape components explored
-  int grid_size = 0;                  // 0 = the space's default (3 body, 5 photo)
+  std::optional<std::string> source;  // the kind's source (--model, --image); none: its default
+  int components = 0;                 // dimensions explored; 0: the kind's default
+  int grid_size = 0;                  // 0 = the kind's default
   int zoom_levels = 4;
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file
@@ -56,8 +60,8 @@ struct GalleryOptions {
 
 // The controller options a window with `options` starts with (also used by the tests).
 ControllerOptions controller_options(const GalleryOptions& options);
-// The same for a window that remembers `prefs`: a body search without --model starts on the
-// body model chosen last time in the New-search panel.
+// The same for a window that remembers `prefs`: a search given no source starts on the one
+// its kind remembers (a body search: the model chosen last time in the New-search panel).
 ControllerOptions controller_options(const GalleryOptions& options, const UiPrefs& prefs);
 
 // Runs the window until it is closed; returns the process exit code.

@@ -1,6 +1,7 @@
 #include "app/ui_prefs.hpp"
 
 #include <algorithm>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,11 @@ namespace {
 
 // ui.json holds a few short fields; anything larger is not ours.
 constexpr std::size_t kMaxPrefsBytes = 1u << 20;
+
+// The window's own fields; any other string field is a source panel's.
+const std::set<std::string> kPrefsFields{
+    "window_width",  "window_height", "save_folder", "save_name",  "view_preset",  "side_tab",
+    "typed_targets", "imperial",      "open_panel",  "save_panel", "history_panel"};
 
 // Moves a broken ui.json out of the way (never deleted: it may be something the user put there
 // by mistake) and says where it went.
@@ -72,13 +78,16 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
   p.save_folder = get_string("save_folder");
   p.save_name = get_string("save_name");
   p.view_preset = get_int("view_preset", 0, 0, 2);
-  p.open_panel = get_bool("open_panel", p.open_panel);
-  p.save_panel = get_bool("save_panel", p.save_panel);
-  p.history_panel = get_bool("history_panel", p.history_panel);
-  if (const std::string model = get_string("body_model"); !model.empty()) p.body_model = model;
-  p.body_model_file = get_string("body_model_file");
-  p.photo_file = get_string("photo_file");
+  if (const std::string tab = get_string("side_tab"); !tab.empty() && tab.size() <= 32) {
+    p.side_tab = tab;
+  }
   p.imperial = get_bool("imperial", false);
+  // Every other short string field belongs to a kind's source panel.
+  for (const auto& [name, value] : j.items()) {
+    if (p.sources.size() >= 32) break;
+    if (!value.is_string() || name.size() > 32 || kPrefsFields.count(name) != 0) continue;
+    if (value.get_ref<const std::string&>().size() <= 4096) p.sources[name] = value;
+  }
   if (const auto it = j.find("typed_targets"); it != j.end() && it->is_object()) {
     // Short texts under short names only: anything else is not what this window wrote.
     for (const auto& [name, text] : it->items()) {
@@ -93,14 +102,13 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
 }
 
 bool save_ui_prefs(const UiPrefs& p, const std::filesystem::path& path) {
-  const nlohmann::json j = {
-      {"window_width", p.window_width}, {"window_height", p.window_height},
-      {"save_folder", p.save_folder},   {"save_name", p.save_name},
-      {"view_preset", p.view_preset},   {"open_panel", p.open_panel},
-      {"save_panel", p.save_panel},     {"history_panel", p.history_panel},
-      {"body_model", p.body_model},     {"body_model_file", p.body_model_file},
-      {"photo_file", p.photo_file},     {"typed_targets", p.typed_targets},
-      {"imperial", p.imperial}};
+  nlohmann::json j = {{"window_width", p.window_width},   {"window_height", p.window_height},
+                      {"save_folder", p.save_folder},     {"save_name", p.save_name},
+                      {"view_preset", p.view_preset},     {"side_tab", p.side_tab},
+                      {"typed_targets", p.typed_targets}, {"imperial", p.imperial}};
+  for (const auto& [name, value] : p.sources) {
+    if (kPrefsFields.count(name) == 0) j[name] = value;
+  }
   try {
     util::write_file_atomically(path, j.dump(1), /*create_folders=*/true);
     return true;

@@ -1,5 +1,5 @@
 // What the window remembers between launches: its size, the last folder and file name saved
-// to, the view, which panels were open and the body model chosen for a new search. A small JSON
+// to, the view, the side panel's tab and what each kind of search last started on. A small JSON
 // file beside the session file; a missing or broken one means defaults (it is a convenience,
 // never user work), and a broken one is reported and set aside.
 #pragma once
@@ -16,15 +16,12 @@ struct UiPrefs {
   std::string save_folder;
   std::string save_name;
   int view_preset = 0;  // 0 front, 1 side, 2 three-quarter
-  bool open_panel = false;
-  bool save_panel = true;
-  bool history_panel = true;
-  // The New-search panel's body model: a built-in model's name ("neutral", "female", "male")
-  // or a model file. A launch without --model starts a new search on it.
-  std::string body_model = "neutral";
-  std::string body_model_file;  // the last file chosen, offered again under "File"
-  // The last picture a photo search opened from a file, offered again in New search.
-  std::string photo_file;
+  // The side panel's open tab (see side_panel_tabs() in gallery_view.hpp).
+  std::string side_tab = "measurements";
+  // What each kind of search remembers for its New-search panel, under the kind's own names
+  // (a body search: "body_model" -> "female"). Stored as top-level strings, so files from
+  // before the catalogue of kinds read the same.
+  std::map<std::string, std::string> sources;
   // The measurement panel: typed targets not yet used ("height" -> "180cm"), and its units.
   std::map<std::string, std::string> typed_targets;
   bool imperial = false;
@@ -32,10 +29,8 @@ struct UiPrefs {
   bool operator==(const UiPrefs& o) const {
     return window_width == o.window_width && window_height == o.window_height &&
            save_folder == o.save_folder && save_name == o.save_name &&
-           view_preset == o.view_preset && open_panel == o.open_panel &&
-           save_panel == o.save_panel && history_panel == o.history_panel &&
-           body_model == o.body_model && body_model_file == o.body_model_file &&
-           photo_file == o.photo_file && typed_targets == o.typed_targets && imperial == o.imperial;
+           view_preset == o.view_preset && side_tab == o.side_tab && sources == o.sources &&
+           typed_targets == o.typed_targets && imperial == o.imperial;
   }
   bool operator!=(const UiPrefs& o) const { return !(*this == o); }
 };

@@ -40,7 +40,7 @@ int run(int argc, char** argv) {
   o.benchmark_clicks = args.get_int("clicks", 12);
   o.benchmark_breakdown = args.has("breakdown");
   if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");
-  const int n = o.grid_size > 0 ? o.grid_size : (o.space == "photo" ? 5 : 3);
+  const int n = o.grid_size > 0 ? o.grid_size : o.catalogue->get(o.space).grid_size;
   const auto [w, h] = app::window_size_for_cells(n, o.cell_size);
   o.window_width = w;
   o.window_height = h;

@@ -22,7 +22,7 @@ const char* const kUsage =
     "  --image FILE            photo to enhance, PNG or JPEG (default: a built-in picture)\n"
     "  --components K          shape components explored (default 10; a model with fewer\n"
     "                          explores all it has, and says so)\n"
-    "  --grid 3|5              grid size (default 3 for bodies, 5 for photos)\n"
+    "  --grid 3|5              grid size (default 3)\n"
     "  --clicks N              zoom clicks per plane (default 4)\n"
     "  --seed N                random seed of a new search (default 1)\n"
     "  --target NAME=VALUE     (bodies; repeatable) start at the nearest body meeting it, e.g.\n"
@@ -87,7 +87,7 @@ int run(int argc, char** argv) {
   app::GalleryOptions o;
   o.launch_time = launch;
   cli::read_gallery_display_options(args, 0, o);
-  o.components = args.get_int("components", 10);
+  o.components = args.get_int("components", 0);
   o.targets = args.get_all("target");
   o.holds = args.get_all("hold");
   if (!o.targets.empty() && !o.holds.empty()) {
@@ -104,7 +104,7 @@ int run(int argc, char** argv) {
   }
   o.zoom_levels = args.get_int("clicks", 4);
   if (o.zoom_levels < 1 || o.zoom_levels > 8) throw cli::ArgError("--clicks must be 1..8");
-  if (o.components < 1 || o.components > sps::kMaxSearchDims) {
+  if (args.has("components") && (o.components < 1 || o.components > sps::kMaxSearchDims)) {
     throw cli::ArgError("--components must be 1.." + std::to_string(sps::kMaxSearchDims) +
                         " (more is not searchable by clicking)");
   }

@@ -1,19 +1,29 @@
 #include "cli/gallery_display_options.hpp"
 
+#include "spaces/space_factory.hpp"
+
 namespace cli {
 
 void read_gallery_display_options(const ArgParser& args, int default_cell_size,
                                   app::GalleryOptions& o) {
-  o.space = args.get_or("space", "body");
+  const app::SpaceCatalogue& kinds = spaces::catalogue();
+  o.catalogue = &kinds;
   o.space_given = args.get("space").has_value();
-  if (o.space != "body" && o.space != "photo") throw ArgError("--space must be body or photo");
-  if (const auto m = args.get("model")) {
-    if (o.space != "body") throw ArgError("--model is for --space body; photos take --image");
-    o.source = *m;
+  const app::SpaceKind* kind = &kinds.default_kind();
+  if (o.space_given) {
+    kind = kinds.find(*args.get("space"));
+    if (kind == nullptr) throw ArgError("--space must be " + kinds.names(" or "));
   }
-  if (const auto m = args.get("image")) {
-    if (o.space != "photo") throw ArgError("--image is for --space photo");
-    o.source = *m;
+  o.space = kind->name;
+  // Each kind names its own source option (--model for bodies, --image for photos).
+  for (const app::SpaceKind& k : kinds.kinds()) {
+    const auto source = args.get(k.source_option);
+    if (!source) continue;
+    if (&k != kind) {
+      throw ArgError("--" + k.source_option + " is for --space " + k.name + "; a " + kind->name +
+                     " search takes --" + kind->source_option);
+    }
+    o.source = *source;
   }
   o.grid_size = args.get_int("grid", 0);
   if (args.has("grid") && o.grid_size != 3 && o.grid_size != 5) {

@@ -7,14 +7,16 @@
 #include <vector>
 
 #include "app/design_space.hpp"
+#include "app/space_catalogue.hpp"
 
 namespace spaces {
 
+// Every kind of design space this program has, body first (the default): what the window and
+// the command line are given.
+const app::SpaceCatalogue& catalogue();
+
 // Throws std::runtime_error for an unknown kind, or the space's own error (file, format).
 std::unique_ptr<app::DesignSpace> open_space(const app::SpaceSettings& settings);
-
-// The kinds open_space() knows, for --help and the window's picker.
-const std::vector<std::string>& space_kinds();
 
 // The built-in body models a body search can start on, in the window picker's order: neutral
 // (the default) first, then female and male. A SpaceSettings source of one of these names (or

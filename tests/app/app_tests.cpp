@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include "app/session.hpp"
 #include "app/session_store.hpp"
+#include "app/space_catalogue.hpp"
 
 #include "app/worker.hpp"
 #include "session_fixtures.hpp"
@@ -767,4 +768,50 @@ TEST_CASE("holds are saved with the session and read back; files without them st
   back.set_constraint_projector(nullptr);
   CHECK(back.saved_holds().empty());
   CHECK(app::Session::from_json(back.to_json()).saved_holds().empty());
+}
+
+TEST_CASE("the catalogue of space kinds: the first is the default, names and files find kinds",
+          "[app][catalogue]") {
+  app::SpaceCatalogue kinds;
+  CHECK_THROWS_AS(kinds.default_kind(), std::logic_error);
+  std::vector<std::string> opened;
+  auto kind = [&opened](const std::string& name, int dims, std::vector<std::string> ext) {
+    app::SpaceKind k;
+    k.name = name;
+    k.dimensions = dims;
+    k.file_extensions = std::move(ext);
+    k.open = [&opened](const app::SpaceSettings& s) -> std::unique_ptr<app::DesignSpace> {
+      opened.push_back(s.kind + ":" + s.source);
+      return nullptr;
+    };
+    return k;
+  };
+  kinds.add(kind("shape", 10, {".npz"}));
+  kinds.add(kind("colour", 12, {".png", ".jpg"}));
+  CHECK_THROWS_AS(kinds.add(kind("colour", 3, {})), std::logic_error);  // twice
+  app::SpaceKind nameless = kind("", 3, {});
+  CHECK_THROWS_AS(kinds.add(nameless), std::logic_error);
+  CHECK(kinds.default_kind().name == "shape");
+  CHECK(kinds.names() == "shape, colour");
+  REQUIRE(kinds.find("colour") != nullptr);
+  CHECK(kinds.find("sound") == nullptr);
+  try {
+    (void)kinds.get("sound");
+    FAIL("an unknown kind was accepted");
+  } catch (const std::runtime_error& e) {
+    CHECK_THAT(e.what(), Catch::Contains("'sound'") && Catch::Contains("shape, colour"));
+  }
+  REQUIRE(kinds.kind_for_file("/a/B.JPG") != nullptr);
+  CHECK(kinds.kind_for_file("/a/B.JPG")->name == "colour");
+  CHECK(kinds.kind_for_file("model.npz")->name == "shape");
+  CHECK(kinds.kind_for_file("notes.txt") == nullptr);
+  CHECK(kinds.kind_for_file("no-extension") == nullptr);
+  CHECK(kinds.default_settings("colour").dimensions == 12);
+  CHECK(kinds.default_settings("colour").kind == "colour");
+  // A settings without a kind (as before kinds were named) opens the default kind.
+  (void)kinds.open(app::SpaceSettings{"", "m.npz", 4});
+  (void)kinds.open(app::SpaceSettings{"colour", "", 12});
+  REQUIRE(opened.size() == 2);
+  CHECK(opened[0] == "shape:m.npz");
+  CHECK(opened[1] == "colour:");
 }

@@ -28,6 +28,7 @@
 #include "spaces/photo_enhancement.hpp"
 #include "spaces/photo_image.hpp"
 #include "spaces/photo_perception.hpp"
+#include "spaces/source_panels.hpp"
 #include "spaces/space_factory.hpp"
 
 namespace fs = std::filesystem;
@@ -432,7 +433,7 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
     GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
     app::ViewOptions vo;
     vo.file_dialog = "builtin";
-    app::GalleryView view(vo, app::UiPrefs{});
+    app::GalleryView view(vo, app::UiPrefs{}, spaces::catalogue());
     double t = 0.0;
     auto frame = [&](long n) {
       c.begin_frame(t);
@@ -489,7 +490,7 @@ TEST_CASE("view and controller in-process: textures the UI drew stay alive acros
     frame(8);
     CHECK(c.space().settings().kind == "photo");
     CHECK(fs::path(c.space().settings().source).filename() == "own.png");
-    CHECK(fs::path(view.prefs().photo_file).filename() == "own.png");
+    CHECK(fs::path(view.prefs().sources.at("photo_file")).filename() == "own.png");
     view.release_gl();
   }
   ImGui::DestroyContext();
@@ -506,7 +507,7 @@ TEST_CASE("the window's remembered settings round-trip, a broken file means defa
   p.save_folder = "/tmp/designs";
   p.save_name = "me.glb";
   p.view_preset = 2;
-  p.open_panel = true;
+  p.side_tab = "new-search";
   REQUIRE(app::save_ui_prefs(p, path));
   const app::UiPrefs q = app::load_ui_prefs(path);
   CHECK(q.window_width == 1280);
@@ -514,7 +515,7 @@ TEST_CASE("the window's remembered settings round-trip, a broken file means defa
   CHECK(q.save_folder == "/tmp/designs");
   CHECK(q.save_name == "me.glb");
   CHECK(q.view_preset == 2);
-  CHECK(q.open_panel);
+  CHECK(q.side_tab == "new-search");
   std::ofstream(path) << "{\"window_width\": -5, \"window_height\": \"big\", \"view_preset\": 9";
   const app::UiPrefs broken = app::load_ui_prefs(path);
   CHECK(broken.window_width == 0);
@@ -539,15 +540,17 @@ struct InProcessWindow {
   float width = 1280, height = 720;
 
   explicit InProcessWindow(app::ControllerOptions o, app::UiPrefs prefs = {},
-                           ImVec2 size = ImVec2(1280, 720)) {
+                           ImVec2 size = ImVec2(1280, 720),
+                           const app::SpaceCatalogue& kinds = spaces::catalogue()) {
     create_test_imgui_context();
     width = size.x;
     height = size.y;
     ImGui::GetIO().DisplaySize = size;
-    c = std::make_unique<GalleryController>(o, &spaces::open_space, t);
+    c = std::make_unique<GalleryController>(
+        o, [&kinds](const app::SpaceSettings& s) { return kinds.open(s); }, t);
     app::ViewOptions vo;
     vo.file_dialog = "builtin";  // never a desktop dialog in a test
-    view = std::make_unique<app::GalleryView>(vo, std::move(prefs));
+    view = std::make_unique<app::GalleryView>(vo, std::move(prefs), kinds);
   }
   ~InProcessWindow() {
     view->release_gl();
@@ -688,12 +691,10 @@ double height_at(const app::DesignSpace& space, const Eigen::VectorXd& x) {
   return -1.0;
 }
 
-// Prefs that keep the New-search panel open and the other panels shut, so it fits the window.
+// Prefs that show the New-search tab.
 app::UiPrefs prefs_with_open_panel() {
   app::UiPrefs p;
-  p.open_panel = true;
-  p.history_panel = false;
-  p.save_panel = false;
+  p.side_tab = "new-search";
   return p;
 }
 
@@ -862,15 +863,16 @@ TEST_CASE("the New-search panel starts a search on the chosen body model and rem
     REQUIRE(saved.session);
     CHECK(saved.session->settings().model_path == "female");
     // The choice is in the prefs, and survives the file.
-    CHECK(w.view->prefs().body_model == "female");
+    CHECK(w.view->prefs().sources.at("body_model") == "female");
     REQUIRE(app::save_ui_prefs(w.view->prefs(), app::ui_prefs_path(session)));
     remembered = app::load_ui_prefs(app::ui_prefs_path(session));
   }
-  CHECK(remembered.body_model == "female");
+  CHECK(remembered.sources.at("body_model") == "female");
 
   // The next launch (a fresh session file, so no resume question) starts on the female model
   // with Female preselected...
   app::GalleryOptions launch;
+  launch.catalogue = &spaces::catalogue();
   launch.session_path = dir.path / "next.json";
   launch.resume = app::ResumePolicy::kNo;
   {
@@ -890,7 +892,7 @@ TEST_CASE("the New-search panel starts a search on the chosen body model and rem
     w.frame(ImVec2(-1, -1), false);
     CHECK(w.c->space().settings().source == "male");
     CHECK(w.view->model_choice() == "male");  // the panel shows the search's model
-    CHECK(w.view->prefs().body_model == "female");
+    CHECK(w.view->prefs().sources.at("body_model") == "female");
   }
 }
 
@@ -902,6 +904,7 @@ TEST_CASE("a broken model file is refused by name and the current search goes on
   std::ofstream(broken) << "this is not a zip archive";
   InProcessWindow w(options(session, "body"), prefs_with_open_panel(), ImVec2(1280, 900));
   w.frame(ImVec2(-1, -1), false);
+  w.frame(ImVec2(-1, -1), false);  // the remembered tab shows from the second frame
   w.click("model:male");
   w.c->queue(intent::ClickCell{1, 1});  // progress: a new search asks first
   w.frame(ImVec2(-1, -1), false, 5.0);
@@ -932,7 +935,7 @@ TEST_CASE("a broken model file is refused by name and the current search goes on
   REQUIRE(saved.session);
   CHECK(saved.session->clicks_on_plane() == 1);
   // A file that failed is not remembered.
-  CHECK(w.view->prefs().body_model == "neutral");
+  CHECK(spaces::remembered_body_model(w.view->prefs().sources) == "neutral");
 
   // An SMPL .pkl gets told how to convert it.
   const fs::path pkl = dir.path / "basicmodel_f.pkl";
@@ -958,8 +961,9 @@ TEST_CASE("a session on another model than the remembered one resumes on its own
     first.save_now();
   }
   app::UiPrefs prefs;
-  prefs.body_model = "male";
+  prefs.sources["body_model"] = "male";
   app::GalleryOptions launch;
+  launch.catalogue = &spaces::catalogue();
   launch.session_path = session;
   launch.resume = app::ResumePolicy::kYes;
   {
@@ -993,7 +997,7 @@ TEST_CASE("ui prefs are written when they change, once they settle, atomically",
   app::UiPrefs p = app::load_ui_prefs(path);
   CHECK_FALSE(saver.update(p, 0.0));  // unchanged: nothing to write
   CHECK_FALSE(fs::exists(path));
-  p.body_model = "female";
+  p.sources["body_model"] = "female";
   CHECK_FALSE(saver.update(p, 0.1));  // changed: wait for it to settle
   CHECK_FALSE(saver.update(p, 0.6));
   // A window being resized changes the prefs every frame: each change restarts the wait.
@@ -1007,7 +1011,7 @@ TEST_CASE("ui prefs are written when they change, once they settle, atomically",
   CHECK(saver.update(p, 2.05));  // settled for a second: written
   CHECK(saver.writes() == 1);
   const app::UiPrefs read = app::load_ui_prefs(path);
-  CHECK(read.body_model == "female");
+  CHECK(read.sources.at("body_model") == "female");
   CHECK(read.window_width == 1320);
   CHECK(read == p);
   // Nothing but the file itself in the folder (the atomic write's temporary is gone).
@@ -1028,7 +1032,7 @@ TEST_CASE("ui prefs are written when they change, once they settle, atomically",
   CHECK_FALSE(saver.update(p, 9.0));
   CHECK(saver.writes() == 1);
   // At exit, a change that has not settled yet is written at once.
-  q.history_panel = false;
+  q.side_tab = "history";
   CHECK_FALSE(saver.update(q, 10.0));
   CHECK(saver.flush(q));
   CHECK(saver.writes() == 2);
@@ -1310,7 +1314,7 @@ TEST_CASE("Save never replaces a file the current search did not write without a
   app::UiPrefs prefs;
   prefs.save_folder = dir.path.string();
   prefs.save_name = "body.glb";
-  prefs.save_panel = true;
+  prefs.side_tab = "save";
   InProcessWindow w(options(dir.path / "s.json", "body"), prefs);
   for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
   const fs::path file = dir.path / "body.glb";
@@ -1577,4 +1581,39 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   c.queue(intent::StartOver{});
   c.begin_frame(t += 1.0);
   CHECK(c.session().zoom_policy().distinct_mm == Approx(app::kCloneMm));
+}
+
+TEST_CASE("a kind added to the catalogue is offered in New search and opens its own files",
+          "[gallery][gl][catalogue]") {
+  // A third kind, registered beside the two the program has: the window is not edited for it.
+  app::SpaceCatalogue kinds;
+  for (const app::SpaceKind& k : spaces::catalogue().kinds()) kinds.add(k);
+  int opened = 0;
+  app::SpaceKind sketch;
+  sketch.name = "sketch";
+  sketch.label = "sketch lines";
+  sketch.source_noun = "Sketch";
+  sketch.source_option = "sketch";
+  sketch.file_extensions = {".sketch"};
+  sketch.open = [&opened](const app::SpaceSettings& s) -> std::unique_ptr<app::DesignSpace> {
+    ++opened;
+    throw std::runtime_error(s.source + ": sketches cannot be read yet");
+  };
+  kinds.add(sketch);
+  TempDir dir;
+  InProcessWindow w(options(dir.path / "s.json", "body"), prefs_with_open_panel(),
+                    ImVec2(1280, 900), kinds);
+  w.frame(ImVec2(-1, -1), false);
+  w.frame(ImVec2(-1, -1), false);
+  REQUIRE(w.view->widget("kind:sketch"));  // the New-search tab offers it
+  REQUIRE(w.view->widget("kind:photo"));
+  const fs::path file = dir.path / "Plan.SKETCH";
+  w.view->open_dropped(*w.c, file.string());
+  w.frame(ImVec2(-1, -1), false);
+  // The dropped file went to the kind that takes its extension; its error is the message and
+  // the body search goes on.
+  CHECK(opened == 1);
+  CHECK(w.c->message().kind == app::MessageKind::kError);
+  CHECK_THAT(w.c->message().text, Catch::Contains("sketches cannot be read yet"));
+  CHECK(w.c->space().settings().kind == "body");
 }

@@ -42,8 +42,8 @@ click() {  # click KIND NAME
   sleep 0.8
 }
 
-# The New-search panel open, the history shut, so the panel is on screen at 1600x1000.
-echo '{"open_panel": true, "history_panel": false}' >"$T/ui.json"
+# The New-search tab shown.
+echo '{"side_tab": "new-search"}' >"$T/ui.json"
 cp "$T/ui.json" "$T/ui.initial"
 
 echo "== first launch: neutral; choose Female and start a new search"
