@@ -25,9 +25,9 @@ namespace app {
 
 // What a session stores about its space (in place of a body-specific model path).
 struct SpaceSettings {
-  std::string kind = "body";  // "body" or "photo"
-  std::string source;         // model (.npz) or image (.png/.jpg) file; empty = built-in default
-  int dimensions = 10;        // body: shape components explored; photo: always 12
+  std::string kind;    // a kind of the catalogue (app/space_catalogue.hpp); empty: its default
+  std::string source;  // the kind's file (a model, a photo); empty = its built-in default
+  int dimensions = 0;  // dimensions explored; 0: the kind's default
 };
 
 // A point made ready for drawing on the CPU: a body's mesh, a photo edit's parameters...

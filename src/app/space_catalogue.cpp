@@ -56,12 +56,11 @@ SpaceSettings SpaceCatalogue::default_settings(const std::string& kind) const {
 }
 
 std::unique_ptr<DesignSpace> SpaceCatalogue::open(const SpaceSettings& settings) const {
-  if (settings.kind.empty()) {
-    SpaceSettings s = settings;
-    s.kind = default_kind().name;
-    return default_kind().open(s);
-  }
-  return get(settings.kind).open(settings);
+  const SpaceKind& kind = settings.kind.empty() ? default_kind() : get(settings.kind);
+  SpaceSettings s = settings;
+  s.kind = kind.name;
+  if (s.dimensions <= 0) s.dimensions = kind.dimensions;
+  return kind.open(s);
 }
 
 std::string SpaceCatalogue::names(const std::string& separator) const {

@@ -90,7 +90,7 @@ class SpaceCatalogue {
   const SpaceKind* kind_for_file(const std::filesystem::path& path) const;
   // A new search of `kind` with its defaults.
   SpaceSettings default_settings(const std::string& kind) const;
-  // Opens `settings`; an empty kind means the default kind.
+  // Opens `settings`; an empty kind means the default kind, no dimensions the kind's own.
   std::unique_ptr<DesignSpace> open(const SpaceSettings& settings) const;
   // "body, photo".
   std::string names(const std::string& separator = ", ") const;

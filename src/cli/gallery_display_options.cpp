@@ -4,27 +4,31 @@
 
 namespace cli {
 
-void read_gallery_display_options(const ArgParser& args, int default_cell_size,
-                                  app::GalleryOptions& o) {
+const app::SpaceKind& read_space_kind(const ArgParser& args, std::optional<std::string>& source) {
   const app::SpaceCatalogue& kinds = spaces::catalogue();
-  o.catalogue = &kinds;
-  o.space_given = args.get("space").has_value();
   const app::SpaceKind* kind = &kinds.default_kind();
-  if (o.space_given) {
-    kind = kinds.find(*args.get("space"));
+  if (const auto name = args.get("space")) {
+    kind = kinds.find(*name);
     if (kind == nullptr) throw ArgError("--space must be " + kinds.names(" or "));
   }
-  o.space = kind->name;
-  // Each kind names its own source option (--model for bodies, --image for photos).
+  // Each kind names its own source option.
   for (const app::SpaceKind& k : kinds.kinds()) {
-    const auto source = args.get(k.source_option);
-    if (!source) continue;
+    const auto given = args.get(k.source_option);
+    if (!given) continue;
     if (&k != kind) {
       throw ArgError("--" + k.source_option + " is for --space " + k.name + "; a " + kind->name +
                      " search takes --" + kind->source_option);
     }
-    o.source = *source;
+    source = *given;
   }
+  return *kind;
+}
+
+void read_gallery_display_options(const ArgParser& args, int default_cell_size,
+                                  app::GalleryOptions& o) {
+  o.catalogue = &spaces::catalogue();
+  o.space_given = args.get("space").has_value();
+  o.space = read_space_kind(args, o.source).name;
   o.grid_size = args.get_int("grid", 0);
   if (args.has("grid") && o.grid_size != 3 && o.grid_size != 5) {
     throw ArgError("--grid must be 3 or 5");

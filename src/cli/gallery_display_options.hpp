@@ -7,6 +7,11 @@
 
 namespace cli {
 
+// --space and the kind's own source option (--model for bodies, --image for photos) against
+// the program's catalogue of kinds. `source` gets the source given, if one was. Throws
+// ArgError naming the option.
+const app::SpaceKind& read_space_kind(const ArgParser& args, std::optional<std::string>& source);
+
 // Reads --space, --model, --image, --grid, --cell-size, --samples, --animation-samples and
 // --animation-scale into `o`; `default_cell_size` 0 means "fit the window". Throws ArgError with
 // the option name.

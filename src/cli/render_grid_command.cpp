@@ -10,6 +10,7 @@
 #include "app/session.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
+#include "cli/gallery_display_options.hpp"
 #include "render/headless_context.hpp"
 #include "render/png_writer.hpp"
 #include "spaces/space_factory.hpp"
@@ -48,18 +49,19 @@ int run(int argc, char** argv) {
                           " name");
     }
   }
-  app::SpaceSettings space_settings = spaces::default_settings(args.get_or("space", "body"));
-  if (space_settings.kind != "body" && space_settings.kind != "photo") {
-    throw cli::ArgError("render-grid: --space must be body or photo");
+  std::optional<std::string> source;
+  const app::SpaceKind& kind = [&]() -> const app::SpaceKind& {
+    try {
+      return cli::read_space_kind(args, source);
+    } catch (const cli::ArgError& e) {
+      throw cli::ArgError("render-grid: " + std::string(e.what()));
+    }
+  }();
+  app::SpaceSettings space_settings = spaces::catalogue().default_settings(kind.name);
+  space_settings.source = source.value_or("");
+  if (!kind.dimensions_fixed) {
+    space_settings.dimensions = args.get_int("components", kind.dimensions);
   }
-  if (args.get("model") && space_settings.kind != "body") {
-    throw cli::ArgError("render-grid: --model is for --space body; photos take --image");
-  }
-  if (args.get("image") && space_settings.kind != "photo") {
-    throw cli::ArgError("render-grid: --image is for --space photo");
-  }
-  space_settings.source = args.get_or(space_settings.kind == "body" ? "model" : "image", "");
-  if (space_settings.kind == "body") space_settings.dimensions = args.get_int("components", 10);
   const int cell = args.get_int("cell", 256);
   if (cell < 32 || cell > 2048) throw cli::ArgError("render-grid: --cell must be 32..2048");
   const int samples = args.get_int("samples", 4);

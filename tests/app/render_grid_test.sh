@@ -36,4 +36,15 @@ PYEOF
 }
 check body 3
 check photo 3
+# The kinds and their source options come from the catalogue; a wrong pair says which is which.
+refused() {  # refused EXPECTED ARGS...
+  local expected=$1; shift
+  if out=$("$APP" render-grid -o "$T/refused.png" "$@" 2>&1); then
+    echo "FAIL: render-grid $* was accepted"; exit 1
+  fi
+  grep -qF -- "$expected" <<<"$out" || { echo "FAIL: render-grid $*: $out"; exit 1; }
+}
+refused "--space must be body or photo" --space sound
+refused "--model is for --space body; a photo search takes --image" --space photo --model male
+refused "--image is for --space photo; a body search takes --model" --image "$T/x.png"
 echo PASS
