@@ -281,9 +281,9 @@ void GalleryController::click(const intent::ClickCell& c) {
   if (r == ClickResult::kZoomed && message_.kind == MessageKind::kSuccess) {
     // The last plane's "done" line (and why it ended early) is about that plane: once this
     // one is clicked on it would read as if it were about the grid on screen.
-    say(MessageKind::kInfo, "zoomed in around your choice: pick the best again (click " +
-                                std::to_string(session_->clicks_on_plane() + 1) + " of " +
-                                std::to_string(session_->settings().zoom_levels) + ")");
+    // No click count here: the line stays through the plane's later clicks, and the toolbar
+    // counts them.
+    say(MessageKind::kInfo, "zoomed in around your choice: pick the best again");
   }
   if (r == ClickResult::kPlaneFinished) {
     // A plane that ends before its last zoom level says why in plain words (issue 9).

@@ -12,7 +12,9 @@ void SlidersPanel::draw(PanelContext& ctx) {
   if (x_ && x_->size() != best.size()) x_.reset();
   Eigen::VectorXd x = x_ ? *x_ : best;
   bool changed = false;
-  const float label_width = std::min(220.0f, ImGui::GetContentRegionAvail().x * 0.45f);
+  // The labels say what each component does ("1: longer legs 4.8 cm, taller"): they get the
+  // larger part of the row, the slider the rest (the tooltip has the whole effect).
+  const float label_width = ImGui::GetContentRegionAvail().x * 0.6f;
   for (int i = 0; i < c.space().dimensions(); ++i) {
     ImGui::PushID(i);
     float v = static_cast<float>(x[i]);

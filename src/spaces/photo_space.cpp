@@ -150,11 +150,12 @@ void PhotoSpace::draw_inspector(const app::PreparedCell& shown, const char* show
                          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     return;
   }
-  ImGui::TableSetupColumn("(-100 .. +100)");
-  ImGui::TableSetupColumn(shown_label);
+  // The names ("highlights: magenta - green") are the long column; the numbers are short.
+  ImGui::TableSetupColumn("(-100 .. +100)", ImGuiTableColumnFlags_WidthStretch, 3.0f);
+  ImGui::TableSetupColumn(shown_label, ImGuiTableColumnFlags_WidthStretch, 1.0f);
   if (b != nullptr) {
-    ImGui::TableSetupColumn(reference_label);
-    ImGui::TableSetupColumn("difference");
+    ImGui::TableSetupColumn(reference_label, ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("difference", ImGuiTableColumnFlags_WidthStretch, 1.0f);
   }
   ImGui::TableHeadersRow();
   for (int i = 0; i < kPhotoParameters; ++i) {
