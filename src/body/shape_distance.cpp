@@ -50,18 +50,35 @@ double ShapeDistance::max_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b)
   return static_cast<double>(vertex_norms(displacement_mm(a, b)).maxCoeff());
 }
 
-std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
-                                                   const Eigen::VectorXf& target_betas) const {
-  if (target_betas.size() != dims()) {
+namespace {
+
+// x_target = (beta + 3) / 6 may lie outside the box; the difference is all that matters.
+Eigen::VectorXd target_point(const Eigen::VectorXf& target_betas, int dims) {
+  if (target_betas.size() != dims) {
     throw std::invalid_argument("shape distance: the target has " +
                                 std::to_string(target_betas.size()) + " betas, the model " +
-                                std::to_string(dims()));
+                                std::to_string(dims));
   }
-  // x_target = (beta + 3) / 6 may lie outside the box; the difference is all that matters.
-  const Eigen::VectorXd target = (target_betas.cast<double>().array() + 3.0) / 6.0;
+  return (target_betas.cast<double>().array() + 3.0) / 6.0;
+}
+
+}  // namespace
+
+std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                                   const Eigen::VectorXf& target_betas) const {
+  const Eigen::VectorXd target = target_point(target_betas, dims());
   std::vector<double> out;
   out.reserve(xs.size());
   for (const auto& x : xs) out.push_back(rms_mm(x, target));
+  return out;
+}
+
+std::vector<double> ShapeDistance::max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                                   const Eigen::VectorXf& target_betas) const {
+  const Eigen::VectorXd target = target_point(target_betas, dims());
+  std::vector<double> out;
+  out.reserve(xs.size());
+  for (const auto& x : xs) out.push_back(max_mm(x, target));
   return out;
 }
 

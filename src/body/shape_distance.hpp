@@ -33,6 +33,10 @@ class ShapeDistance {
   // allowed).
   std::vector<double> rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
                                       const Eigen::VectorXf& target_betas) const;
+  // Largest vertex distance of each body to that body: how far it visibly is from it (the
+  // measure the window's look-alike test uses between cells).
+  std::vector<double> max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                      const Eigen::VectorXf& target_betas) const;
 
   // Largest vertex distance between every pair of bodies (symmetric, zero diagonal).
   Eigen::MatrixXd pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs) const;

@@ -246,6 +246,12 @@ int run_body_simulation(const ArgParser& args) {
     const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
       return distance.rms_to_betas_mm(xs, target);
     };
+    // The pixel person sees how far a cell is from the body in mind as the window measures
+    // look-alikes: its largest visible shift (2 px of a 210 px cell is 20 mm of the body's
+    // outline, however little of the body moves). The mm person judges by the RMS distance.
+    const app::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {
+      return distance.max_to_betas_mm(xs, target);
+    };
     app::SessionSettings settings;
     settings.components = k;
     settings.grid_size = grid;
@@ -266,7 +272,8 @@ int run_body_simulation(const ArgParser& args) {
       if (target_model) session.set_population(spaces::body_population(k));
     }
     if (adapt) session.set_perceptual_distance(pairwise, policy);
-    play_trial(session, to_target, pairwise, jnd_mm, clone_mm, trial_seed, results);
+    play_trial(session, to_target, pairwise, jnd_mm, clone_mm, trial_seed, results,
+               pixel_person ? seen : app::TargetDistance{});
     if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
   }
   if (!quiet) std::cerr << "\n";

@@ -39,6 +39,13 @@ TEST_CASE("shape distance: RMS and largest vertex distance by hand", "[shape-dis
   CHECK(to_target[0] == Approx(0.0).margin(1e-6));
   CHECK(to_target[1] == Approx(d.rms_mm(a, b)).epsilon(1e-5));
   CHECK_THROWS_AS(d.rms_to_betas_mm({a}, Eigen::Vector3f::Zero()), std::invalid_argument);
+  // The largest visible shift to the target: the largest vertex distance, never below the RMS.
+  const auto seen = d.max_to_betas_mm({a, b}, Eigen::Vector2f(0.0f, 0.0f));
+  REQUIRE(seen.size() == 2u);
+  CHECK(seen[0] == Approx(0.0).margin(1e-6));
+  CHECK(seen[1] == Approx(d.max_mm(a, b)).epsilon(1e-5));
+  CHECK(seen[1] >= to_target[1] * (1.0 - 1e-6));
+  CHECK_THROWS_AS(d.max_to_betas_mm({a}, Eigen::Vector3f::Zero()), std::invalid_argument);
   CHECK_THROWS_AS(d.max_mm(a, Eigen::Vector3d::Zero()), std::invalid_argument);
 }
 
