@@ -230,6 +230,13 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   }
 }
 
+void GalleryView::orbit(float dx, float dy) {
+  camera_.orbit(dx, dy);
+  active_preset_ = -1;
+  ++camera_version_;
+  camera_dragging_ = true;  // drawn as during a drag (build() clears it again)
+}
+
 void GalleryView::draw_cells(GalleryController& c) {
   DesignSpace& space = c.space();
   const float dpi = dpi_;

@@ -64,6 +64,8 @@ class GalleryView {
   long thumbnail_draws() const { return thumbnail_draws_; }
   // Switches the view preset (0 front, 1 side, 2 three-quarter), as its toolbar button does.
   void choose_view(int index) { set_preset(index); }
+  // Turns the shared camera as dragging across a cell does (bench-gui's orbit frames).
+  void orbit(float dx, float dy);
   // A dialog or question is open (the window keeps polling).
   bool waiting_for_dialog() const { return desktop_dialog_.valid(); }
 
