@@ -107,11 +107,20 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
       std::unique_ptr<DesignSpace> resumed_space;
       std::string problem;
       try {
-        resumed_space = opener_(space_of(loaded.session->settings()));
-        if (resumed_space->dimensions() != loaded.session->settings().components) {
-          throw std::runtime_error(
-              "the space now has " + std::to_string(resumed_space->dimensions()) +
-              " dimensions, the session " + std::to_string(loaded.session->settings().components));
+        // Resumed at once on the space already open: it is not opened a second time (a body
+        // model takes about 0.1 s to load). Asking first keeps the session's own space for
+        // the question.
+        const SpaceSettings wanted = space_of(loaded.session->settings());
+        const SpaceSettings& have = space_->settings();
+        const bool same_space = options_.resume == ResumePolicy::kYes && wanted.kind == have.kind &&
+                                wanted.source == have.source &&
+                                wanted.dimensions == have.dimensions;
+        if (!same_space) resumed_space = opener_(wanted);
+        const int dimensions = same_space ? space_->dimensions() : resumed_space->dimensions();
+        if (dimensions != loaded.session->settings().components) {
+          throw std::runtime_error("the space now has " + std::to_string(dimensions) +
+                                   " dimensions, the session " +
+                                   std::to_string(loaded.session->settings().components));
         }
       } catch (const std::exception& e) {
         problem = e.what();
