@@ -3,7 +3,9 @@
 # into build/fuzz and runs each for SECONDS (default 60), one at a time, from the committed
 # seed corpora (tests/fuzz/corpus/<target>/; new inputs go to build/fuzz/corpus/<target>/).
 # Prints executions and crashes per target; exits 1 if any target crashed (the input is kept
-# under build/fuzz/artifacts/ -- turn it into an ordinary regression test).
+# under build/fuzz/artifacts/ -- turn it into an ordinary regression test). Exits 77 without
+# running anything when clang is missing, so that ctest reports fuzz.smoke as skipped (its
+# SKIP_RETURN_CODE) instead of passed.
 #   tools/fuzz.sh [SECONDS] [TARGET...]
 #   tools/fuzz.sh --seeds BUILD_DIR   regenerate the committed seeds with BUILD_DIR's
 #                                     fuzz_corpus_writer (after changing the fixtures)
@@ -26,7 +28,7 @@ targets=("$@")
 if ! command -v clang++ >/dev/null || ! command -v clang >/dev/null; then
   echo "fuzz: NOTICE: clang is not installed; the fuzz run is SKIPPED" \
        "(bash tools/setup.sh --test installs clang and libclang-rt-14-dev)"
-  exit 0
+  exit 77
 fi
 
 build=build/fuzz

@@ -1,40 +1,64 @@
 #!/usr/bin/env bash
-# Start-up cost of the window on a fresh session against a long one: launch to first grid,
-# time to 20 frames, and peak memory (max RSS). The long session is made first by the window
-# itself (--benchmark-clicks, 48 planes of 4 clicks; planes that end early make it more).
-#   bash tools/long_session_benchmark.sh [BUILD_DIR]     (starts its own Xvfb when needed)
+# The window on a fresh session against one with PLANES finished planes (default 50), side by
+# side: bench-gui on each, alternating, RUNS times (default 2). Prints, per session, the frame
+# time while the camera orbits (it turns every frame), the click-to-frame time, the frame time
+# of the zoom animations, launch to first grid and the start-up memory (peak RSS at the first
+# grid), and how far the long session's mean is from the fresh one's. The long session is
+# made once, in-process, by bench-gui --write-session (the clicks go through the real
+# controller, optimizer and autosave); each run resumes a copy of it.
+#   bash tools/long_session_benchmark.sh [BUILD_DIR] [PLANES] [RUNS]   (starts Xvfb when needed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-APP=$(realpath "${1:-build}")/sequential-gallery
+BUILD=$(realpath "${1:-build}")
+PLANES=${2:-50}
+RUNS=${3:-2}
+APP=$BUILD/sequential-gallery
 [[ -x "$APP" ]] || { echo "long_session_benchmark: $APP not built"; exit 1; }
 if [[ -z "${DISPLAY:-}" ]]; then
-  exec xvfb-run -a -s "-screen 0 1600x1000x24" bash "$0" "$(dirname "$APP")"
+  exec xvfb-run -a -s "-screen 0 1280x720x24" bash "$0" "$BUILD" "$PLANES" "$RUNS"
 fi
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-"$APP" --session "$T/long.json" --resume no --benchmark-clicks 192 --zoom-seconds 0.05 \
-  --window 1280x720 >"$T/make.log" 2>&1
-planes=$(/usr/bin/python3 -c "import json,sys; print(len(json.load(open(sys.argv[1]))['history']))" "$T/long.json")
-echo "long session: $planes finished planes, $(stat -c %s "$T/long.json") bytes"
-measure() {  # LABEL SESSION RESUME
-  /usr/bin/python3 - "$APP" "$@" "$T/shot.png" <<'PY'
-import resource, subprocess, sys, time
-app, label, session, resume, shot = sys.argv[1:6]
-start = time.time()
-p = subprocess.run([app, "--session", session, "--resume", resume, "--window", "1280x720",
-                    "--screenshot", shot, "--screenshot-after-frames", "20",
-                    "--quit-after-screenshot"], capture_output=True, text=True)
-seconds = time.time() - start
-rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
-first = [l for l in (p.stdout + p.stderr).splitlines() if l.startswith("first grid shown")]
-print(f"{label}: {first[0] if first else 'no first grid'}; 20 frames and exit in "
-      f"{seconds:.2f} s; max RSS {rss:.0f} MB")
-PY
-}
-for run in 1 2; do
-  rm -f "$T"/fresh.json*
-  measure "fresh (run $run)" "$T/fresh.json" no
-  cp "$T/long.json" "$T/copy.json"
-  rm -f "$T"/copy.json.*
-  measure "$planes planes (run $run)" "$T/copy.json" yes
+# 3x3 cells of 180 px: a window that fits the 1280x720 screen.
+COMMON=(bench-gui --cell-size 180 --clicks 12 --orbit-frames 90)
+"$APP" "${COMMON[@]}" --write-session "$T/long.json" --planes-done "$PLANES" | tee "$T/make.log"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+for run in $(seq 1 "$RUNS"); do
+  "$APP" "${COMMON[@]}" >"$T/fresh-$run.txt" 2>&1
+  "$APP" "${COMMON[@]}" --session "$T/long.json" >"$T/long-$run.txt" 2>&1
 done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+grep -h "^renderer:\|^grid:" "$T/fresh-1.txt"
+/usr/bin/python3 - "$T" "$RUNS" "$PLANES" <<'PY'
+import re, sys
+folder, runs, planes = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+metrics = [
+    ("orbit frame time median (ms)", r"orbit frames: \d+, frame time median: ([\d.]+)"),
+    ("orbit frame time p95 (ms)", r"orbit frames: \d+, frame time median: [\d.]+ ms  p95: ([\d.]+)"),
+    ("click to frame median (ms)", r"click to frame: \d+ clicks, median: ([\d.]+)"),
+    ("click to frame max (ms)", r"click to frame: .* max: ([\d.]+)"),
+    ("zoom frame time median (ms)", r"^frame time median: ([\d.]+)"),
+    ("launch to first grid (ms)", r"launch to first grid: ([\d.]+)"),
+    ("start-up peak RSS (MB)", r"start-up memory: peak RSS ([\d.]+)"),
+]
+def values(kind, pattern):
+    out = []
+    for run in range(1, runs + 1):
+        text = open(f"{folder}/{kind}-{run}.txt").read()
+        m = re.search(pattern, text, re.M)
+        out.append(float(m.group(1)) if m else float("nan"))
+    return out
+print(f"| measure | fresh | {planes} planes | long vs fresh (means) |")
+print("|---|---|---|---|")
+for name, pattern in metrics:
+    fresh, long_ = values("fresh", pattern), values("long", pattern)
+    mf, ml = sum(fresh) / len(fresh), sum(long_) / len(long_)
+    diff = (ml - mf) / mf * 100 if mf else float("nan")
+    fmt = lambda v: " / ".join(f"{x:.1f}" for x in v)
+    print(f"| {name} | {fmt(fresh)} | {fmt(long_)} | {diff:+.0f} % |")
+for run in range(1, runs + 1):
+    for kind in ("fresh", "long"):
+        text = open(f"{folder}/{kind}-{run}.txt").read()
+        if "click to frame" not in text:
+            print(f"{kind} run {run} printed no result:\n{text[-2000:]}")
+PY

@@ -17,6 +17,7 @@
 #include "app/gallery_layout.hpp"
 #include "app/gallery_view.hpp"
 #include "app/ui_prefs.hpp"
+#include "app/window_benchmark.hpp"
 #include "render/png_writer.hpp"
 
 namespace app {
@@ -55,7 +56,8 @@ double percentile(std::vector<double> v, double p) {
 
 class GalleryWindow {
  public:
-  explicit GalleryWindow(const GalleryOptions& options) : options_(options) {}
+  explicit GalleryWindow(const GalleryOptions& options)
+      : options_(options), bench_(options.benchmark_orbit_frames) {}
   ~GalleryWindow() { shutdown(); }
   int run();
 
@@ -104,6 +106,7 @@ class GalleryWindow {
   std::vector<double> present_ms_;  // ImGui drawing of the window + swap
   std::vector<double> swap_ms_;     // of which the swap
   int benchmark_clicks_done_ = 0;
+  WindowBenchmark bench_;
   bool quit_ = false;
 };
 
@@ -277,12 +280,13 @@ void GalleryWindow::benchmark_report() {
   }
   std::printf("last optimizer submit: %.2f s (worker thread)\n",
               controller_->last_submit_seconds());
-  std::fflush(stdout);
+  std::printf("session: %d finished planes at the end\n", controller_->session().planes_done());
+  bench_.report();
 }
 
 void GalleryWindow::benchmark_step() {
   if (options_.benchmark_clicks <= 0 || !first_grid_shown_) return;
-  if (controller_->animating() || controller_->busy()) return;
+  if (controller_->animating() || controller_->busy() || !bench_.orbit_done()) return;
   if (benchmark_clicks_done_ >= options_.benchmark_clicks) {
     benchmark_report();
     quit_ = true;
@@ -292,6 +296,7 @@ void GalleryWindow::benchmark_step() {
   static const int pattern[][2] = {{0, 0}, {2, 1}, {1, 2}, {2, 2}, {0, 1}, {1, 0}, {2, 0}, {0, 2}};
   const auto& p = pattern[benchmark_clicks_done_ % 8];
   controller_->queue(intent::ClickCell{std::min(p[0], n - 1), std::min(p[1], n - 1)});
+  bench_.click_queued(Clock::now());
   ++benchmark_clicks_done_;
 }
 
@@ -355,6 +360,9 @@ int GalleryWindow::run() {
           std::chrono::duration<double, std::milli>(frame_start - last_frame_start).count());
     }
     last_frame_start = frame_start;
+    const bool orbit =
+        options_.benchmark_clicks > 0 &&
+        bench_.frame_started(frame_start, !controller_->animating() && !controller_->busy());
 
     if (!pending_drop_.empty()) {
       view_->open_dropped(*controller_, pending_drop_);
@@ -372,6 +380,7 @@ int GalleryWindow::run() {
     const auto t0 = Clock::now();
     view_->update_cells(*controller_, static_cast<float>(win_w), static_cast<float>(win_h), dpi);
     const auto t1 = Clock::now();
+    if (orbit) view_->orbit(4.0f, 0.0f);
     view_->draw_cells(*controller_);
     // 3. The UI: reads state, queues intents for the next frame.
     ImGui_ImplOpenGL3_NewFrame();
@@ -399,6 +408,7 @@ int GalleryWindow::run() {
       first_grid_shown_ = true;
       glFinish();
       launch_to_first_grid_ = seconds_since(options_.launch_time);
+      bench_.first_grid();
       std::cerr << "first grid shown " << static_cast<int>(launch_to_first_grid_ * 1000.0)
                 << " ms after launch\n";
     }
@@ -412,6 +422,10 @@ int GalleryWindow::run() {
       if (options_.quit_after_screenshot) quit_ = true;
     }
     glfwSwapBuffers(window_);
+    if (bench_.click_pending()) {
+      glFinish();  // the click's frame is on screen
+      bench_.frame_presented(Clock::now());
+    }
     if (prefs_saver_) prefs_saver_->update(current_prefs(), now());
     if (previous_frame_zoomed && options_.benchmark_breakdown) {
       glFinish();

@@ -55,6 +55,7 @@ struct GalleryOptions {
   // during the zoom animations and the launch-to-first-grid time, print them and exit.
   int benchmark_clicks = 0;
   bool benchmark_breakdown = false;  // also time the phases of each frame (adds glFinish)
+  int benchmark_orbit_frames = 0;    // before the clicks: frames with the camera turning
   std::chrono::steady_clock::time_point launch_time = std::chrono::steady_clock::now();
 };
 

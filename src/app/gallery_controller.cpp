@@ -107,11 +107,20 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
       std::unique_ptr<DesignSpace> resumed_space;
       std::string problem;
       try {
-        resumed_space = opener_(space_of(loaded.session->settings()));
-        if (resumed_space->dimensions() != loaded.session->settings().components) {
-          throw std::runtime_error(
-              "the space now has " + std::to_string(resumed_space->dimensions()) +
-              " dimensions, the session " + std::to_string(loaded.session->settings().components));
+        // Resumed at once on the space already open: it is not opened a second time (a body
+        // model takes about 0.1 s to load). Asking first keeps the session's own space for
+        // the question.
+        const SpaceSettings wanted = space_of(loaded.session->settings());
+        const SpaceSettings& have = space_->settings();
+        const bool same_space = options_.resume == ResumePolicy::kYes && wanted.kind == have.kind &&
+                                wanted.source == have.source &&
+                                wanted.dimensions == have.dimensions;
+        if (!same_space) resumed_space = opener_(wanted);
+        const int dimensions = same_space ? space_->dimensions() : resumed_space->dimensions();
+        if (dimensions != loaded.session->settings().components) {
+          throw std::runtime_error("the space now has " + std::to_string(dimensions) +
+                                   " dimensions, the session " +
+                                   std::to_string(loaded.session->settings().components));
         }
       } catch (const std::exception& e) {
         problem = e.what();
@@ -125,9 +134,11 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
       } else if (options_.resume == ResumePolicy::kYes) {
         adopt(std::move(*loaded.session), std::move(resumed_space));
         say(MessageKind::kInfo, "resumed the session from " + options_.session_path.string());
+        if (!loaded.redo_problem.empty()) say(MessageKind::kError, loaded.redo_problem);
       } else if (options_.resume == ResumePolicy::kAsk) {
         pending_resume_ = std::move(loaded.session);
         pending_resume_space_ = std::move(resumed_space);
+        pending_redo_problem_ = std::move(loaded.redo_problem);
       } else {
         keep_old_session_file("");
       }
@@ -236,7 +247,7 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::Resume&) { resume(); }, [&](const intent::StartNew&) { start_new(); },
           [&](const intent::Export& e) { export_point(e.path); },
           [&](const intent::UsePoint& u) { use_point(u.x, "the slider values", true); },
-          [&](const intent::SetHolds& h) { set_holds(h.holds); },
+          [&](const intent::SetHolds& h) { set_holds(h.holds, h.resumed); },
           [&](const intent::GoToTargets& t) { go_to_targets(t.targets); },
           [&](const intent::SetCellPixels& p) {
             if (p.pixels == cell_pixels_ || p.pixels < 1) return;
@@ -270,7 +281,7 @@ void GalleryController::click(const intent::ClickCell& c) {
   const sps::Plane before = session_->search().current_plane();
   const ClickResult r = session_->click({c.col, c.row});
   if (r == ClickResult::kIgnored) return;
-  redo_.clear();
+  session_->clear_redo();
   inspected_ = -1;
   after_change(before);
   if (options_.log) {
@@ -300,17 +311,12 @@ bool GalleryController::can_undo_click() const {
   return !busy() && (session_->clicks_on_plane() > 0 || session_->planes_done() > 0);
 }
 
-void GalleryController::remember_for_redo() {
-  redo_.push_back(*session_);
-  if (redo_.size() > 64) redo_.erase(redo_.begin());
-}
-
 void GalleryController::undo_click() {
   if (busy()) return;
   const sps::Plane before = session_->search().current_plane();
   Session snapshot = *session_;
   if (session_->undo_click()) {
-    redo_.push_back(std::move(snapshot));
+    session_->push_redo(std::move(snapshot), true);
     after_change(before);
     say(MessageKind::kInfo, "undid the last click");
   } else {
@@ -332,7 +338,7 @@ void GalleryController::undo_plane() {
   if (session_->clicks_on_plane() > 0) session_->undo_plane();
   if (session_->undo_plane()) {
     if (session_->clicks_on_plane() > 0) session_->undo_plane();  // reopened without clicks
-    redo_.push_back(std::move(snapshot));
+    session_->push_redo(std::move(snapshot), true);
     inspected_ = -1;
     after_change(before);
     say(MessageKind::kInfo,
@@ -341,10 +347,11 @@ void GalleryController::undo_plane() {
 }
 
 void GalleryController::redo() {
-  if (busy() || redo_.empty()) return;
+  if (busy() || session_->redo_depth() == 0) return;
   const sps::Plane before = session_->search().current_plane();
-  session_ = std::move(redo_.back());
-  redo_.pop_back();
+  // A step read from the session file has no perceptual distance or holds (never saved):
+  // pop_redo gives it this session's.
+  session_ = session_->pop_redo();
   inspected_ = -1;
   after_change(before);
   say(MessageKind::kInfo, "redone");
@@ -353,8 +360,9 @@ void GalleryController::redo() {
 void GalleryController::start_over() {
   if (busy()) return;
   const sps::Plane before = session_->search().current_plane();
-  remember_for_redo();
+  Session snapshot = *session_;
   session_->start_over();
+  session_->push_redo(std::move(snapshot), false);
   inspected_ = -1;
   after_change(before);
   say(MessageKind::kInfo, "started over: all preference data discarded (Redo brings it back)");
@@ -393,6 +401,8 @@ void GalleryController::resume() {
                               ? "showing the search that is open in another window (read-only "
                                 "here: nothing is saved)"
                               : "resumed the previous session");
+  if (!pending_redo_problem_.empty()) say(MessageKind::kError, std::move(pending_redo_problem_));
+  pending_redo_problem_.clear();
 }
 
 void GalleryController::start_new() {
@@ -425,7 +435,7 @@ void GalleryController::use_point(const Eigen::VectorXd& given, const std::strin
   // The clicks already made on this plane's zoom levels stay preference data.
   submission.extra_comparisons = session_->level_comparisons();
   if ((x - previous_best).norm() > 1e-9) submission.extra_comparisons.push_back({x, previous_best});
-  redo_.clear();
+  session_->clear_redo();
   ++generation_;
   point_job_ = x;
   point_job_what_ = what + held_note;
@@ -442,10 +452,10 @@ std::string GalleryController::holds_description() const {
 
 // Holds change what the grid shows, not the preference data: the session keeps its search and
 // only builds its planes and cells through the projector (Session::set_constraint_projector).
-void GalleryController::set_holds(const std::vector<std::string>& holds) {
+void GalleryController::set_holds(const std::vector<std::string>& holds, bool resumed) {
   if (busy() || worker_.busy()) {
     // After the optimizer's result is in (begin_frame): never discard it.
-    deferred_.push_back(intent::SetHolds{holds});
+    deferred_.push_back(intent::SetHolds{holds, resumed});
     return;
   }
   std::shared_ptr<const ConstraintProjector> projector;
@@ -459,7 +469,9 @@ void GalleryController::set_holds(const std::vector<std::string>& holds) {
   }
   session_->set_constraint_projector(projector);
   holds_ = projector ? holds : std::vector<std::string>{};
-  redo_.clear();  // redo copies were made under other holds
+  // Redo steps were made under other holds, except those of a resumed session, saved under
+  // the very holds held again now.
+  if (!resumed) session_->clear_redo();
   ++generation_;
   animation_ = Animation::kNone;
   morph_from_.clear();
@@ -561,9 +573,8 @@ void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> spac
   // command line, which then replace them); the space checks them like typed ones.
   if (!session_->saved_holds().empty()) {
     std::vector<std::string> holds = hold_texts(session_->saved_holds());
-    deferred_.insert(deferred_.begin(), intent::SetHolds{std::move(holds)});
+    deferred_.insert(deferred_.begin(), intent::SetHolds{std::move(holds), true});
   }
-  redo_.clear();
   ++generation_;
   inspected_ = -1;
   animation_ = Animation::kNone;

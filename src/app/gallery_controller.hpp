@@ -88,6 +88,7 @@ struct UsePoint {
 // "name=value"; empty releases them (the preference data stay).
 struct SetHolds {
   std::vector<std::string> holds;
+  bool resumed = false;  // a resumed session's own holds, held again (its redo steps stay)
 };
 // "Go": the point nearest to the current best meeting "name=value" targets becomes the current
 // best (as UsePoint), or the message says which targets are out of reach.
@@ -159,7 +160,7 @@ class GalleryController {
 
   bool can_undo_click() const;
   bool can_undo_plane() const { return !busy() && session_->planes_done() > 0; }
-  bool can_redo() const { return !busy() && !redo_.empty(); }
+  bool can_redo() const { return !busy() && session_->redo_depth() > 0; }
   // Clicks or finished planes that a new search would discard.
   bool has_progress() const {
     return session_->planes_done() > 0 || session_->clicks_on_plane() > 0;
@@ -197,13 +198,12 @@ class GalleryController {
   // targets"). A slider point is moved onto the holds in force first (the sliders know nothing
   // of them), so that what is held stays held.
   void use_point(const Eigen::VectorXd& x, const std::string& what, bool onto_holds);
-  void set_holds(const std::vector<std::string>& holds);
+  void set_holds(const std::vector<std::string>& holds, bool resumed = false);
   void go_to_targets(const std::vector<std::string>& targets);
 
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
   // The space's perceptual hooks on `session_` (never saved, so after every load too).
   void install_perception();
-  void remember_for_redo();
   void after_change(const sps::Plane& plane_before);
   void poll_worker();
   void autosave();
@@ -219,8 +219,8 @@ class GalleryController {
   std::optional<Session> session_;
   std::optional<Session> pending_resume_;
   std::unique_ptr<DesignSpace> pending_resume_space_;
+  std::string pending_redo_problem_;  // said once the session is resumed
   std::deque<Intent> queue_;
-  std::vector<Session> redo_;
 
   SubmitWorker worker_;
   std::optional<Eigen::VectorXd> point_job_;  // a slider point being submitted

@@ -123,6 +123,13 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   history_.update(s);
 }
 
+void GalleryView::orbit(float dx, float dy) {
+  camera_.orbit(dx, dy);
+  active_preset_ = -1;
+  ++camera_version_;
+  orbiting_ = true;  // drawn as during a drag (build() clears it again)
+}
+
 void GalleryView::draw_cells(GalleryController& c) {
   DesignSpace& space = c.space();
   const float dpi = dpi_;
@@ -132,7 +139,7 @@ void GalleryView::draw_cells(GalleryController& c) {
   look.camera = space.uses_camera() ? &camera_ : nullptr;
   // While the grid moves, cells render without multisampling (a software rasterizer pays per
   // sample); the settled grid is drawn again with full antialiasing.
-  const bool fast = c.animating() || grid_.dragging();
+  const bool fast = c.animating() || grid_.dragging() || orbiting_;
   bool grid_drew = false;
   for (auto& cell : cells_) {
     grid_drew |= cell.draw(look, camera_version_, cell_pixels_, cell_pixels_, options_.samples,
@@ -153,6 +160,7 @@ void GalleryView::draw_cells(GalleryController& c) {
 
 void GalleryView::build(GalleryController& c, long frame) {
   PanelContext ctx = context(c);
+  orbiting_ = false;
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(io.DisplaySize);

@@ -72,6 +72,8 @@ class GalleryView {
   long thumbnail_draws() const { return history_.draws(); }
   // Switches the view preset (0 front, 1 side, 2 three-quarter), as its toolbar button does.
   void choose_view(int index) { set_preset(index); }
+  // Turns the shared camera as dragging across a cell does (bench-gui's orbit frames).
+  void orbit(float dx, float dy);
   // A desktop file dialog is open (the window keeps polling).
   bool waiting_for_dialog() const { return dialogs_.waiting_for_desktop(); }
 
@@ -117,6 +119,7 @@ class GalleryView {
   render::Camera camera_;
   int active_preset_ = 0;  // -1 after a free orbit
   int camera_version_ = 0;
+  bool orbiting_ = false;  // orbit() was called since the last build() (benchmark frames)
 
   std::vector<CellView> cells_;
   CellView best_, start_, inspect_;

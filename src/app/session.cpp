@@ -72,7 +72,159 @@ std::vector<sps::GridCell> path_from(const json& a, int n, const char* what) {
   return path;
 }
 
+json history_json(const std::vector<HistoryEntry>& history) {
+  json a = json::array();
+  for (const auto& h : history) {
+    json entry{{"chosen", vector_json(h.chosen)}, {"path", path_json(h.path)}};
+    if (h.set_by_sliders) entry["set_by_sliders"] = true;
+    a.push_back(std::move(entry));
+  }
+  return a;
+}
+
+std::vector<HistoryEntry> history_from(const json& history, const SessionSettings& settings) {
+  if (!history.is_array()) throw std::runtime_error("history must be an array");
+  std::vector<HistoryEntry> entries;
+  for (const auto& h : history) {
+    HistoryEntry entry;
+    entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
+    entry.path = path_from(h.at("path"), settings.grid_size, "history path");
+    if (h.contains("set_by_sliders")) {
+      if (!h.at("set_by_sliders").is_boolean()) {
+        throw std::runtime_error("history set_by_sliders must be true or false");
+      }
+      entry.set_by_sliders = h.at("set_by_sliders").get<bool>();
+    }
+    // Undo reopens a finished plane with its clicks minus the last: each finished plane has
+    // one click per zoom level, fewer when it ended early (no visible change left), or those
+    // made before the point was set with the expert sliders (adopt_point).
+    if (static_cast<int>(entry.path.size()) > settings.zoom_levels) {
+      throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
+                               " clicks, expected at most " + std::to_string(settings.zoom_levels));
+    }
+    entries.push_back(std::move(entry));
+  }
+  return entries;
+}
+
+bool same_entry(const HistoryEntry& a, const HistoryEntry& b) {
+  return a.chosen.size() == b.chosen.size() && a.chosen == b.chosen && a.path == b.path &&
+         a.set_by_sliders == b.set_by_sliders;
+}
+
+// `a` is the first a.size() entries of `b`.
+bool is_prefix(const std::vector<HistoryEntry>& a, const std::vector<HistoryEntry>& b) {
+  if (a.size() > b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!same_entry(a[i], b[i])) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+// Reading and writing the redo stack needs the session's insides; nlohmann's types stay out
+// of the header.
+struct SessionJson {
+  // The redo stack, oldest first. A state whose search is the previous one's with
+  // submissions undone (the usual case: each Undo pushes the state it took back) stores the
+  // count ("search_undos"), and a history that begins the previous one's its length
+  // ("history_kept"): a full copy of a 50-plane search is about a megabyte.
+  static json redo_json(const Session& session) {
+    json a = json::array();
+    const Session* previous = nullptr;
+    bool previous_by_undo = false;
+    for (const auto& e : session.redo_) {
+      const Session& s = *e.state;
+      json entry{{"path", path_json(s.path_)}, {"start_point", vector_json(s.start_point_)}};
+      const int undone = previous ? previous->search_.iteration() - s.search_.iteration() : -1;
+      if (previous && previous_by_undo && undone >= 0) {
+        entry["search_undos"] = undone;
+      } else {
+        entry["search"] = json::parse(s.search_.to_json());
+      }
+      if (previous && is_prefix(s.history_, previous->history_)) {
+        entry["history_kept"] = s.history_.size();
+      } else {
+        entry["history"] = history_json(s.history_);
+      }
+      a.push_back(std::move(entry));
+      previous = &s;
+      previous_by_undo = e.next_by_undo;
+    }
+    if (!a.empty() && previous_by_undo) a.back()["undone_into_session"] = true;
+    return a;
+  }
+
+  // Throws std::runtime_error "redo[i]: <problem>" on anything unusable.
+  static void read_redo(Session& session, const json& a) {
+    if (!a.is_array()) throw std::runtime_error("redo must be an array");
+    if (a.size() > static_cast<std::size_t>(Session::kMaxRedo)) {
+      throw std::runtime_error("redo has more than " + std::to_string(Session::kMaxRedo) +
+                               " entries");
+    }
+    const SessionSettings& settings = session.settings_;
+    std::shared_ptr<const Session> previous;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      try {
+        const json& e = a[i];
+        if (!e.is_object()) throw std::runtime_error("must be an object");
+        Session s(settings);
+        if (e.contains("search")) {
+          s.search_ = sps::PlaneSearch::from_json(e.at("search").dump());
+          if (s.search_.dims() != settings.components) {
+            throw std::runtime_error("search dimensions differ from the component count");
+          }
+        } else if (e.contains("search_undos")) {
+          if (!previous) throw std::runtime_error("search_undos without an earlier entry");
+          const auto undos =
+              integer_from(e.at("search_undos"), "search_undos", 0, previous->search_.iteration());
+          s.search_ = previous->search_;
+          for (long long k = 0; k < undos; ++k) (void)s.search_.undo();
+        } else {
+          throw std::runtime_error("search is missing");
+        }
+        s.path_ = path_from(sps::json_fields::field(e, "path", "path"), settings.grid_size, "path");
+        if (static_cast<int>(s.path_.size()) > settings.zoom_levels) {
+          throw std::runtime_error("path longer than the zoom levels");
+        }
+        s.start_point_ = vector_from(sps::json_fields::field(e, "start_point", "start_point"),
+                                     settings.components, "start_point");
+        if (e.contains("history")) {
+          s.history_ = history_from(e.at("history"), settings);
+        } else if (e.contains("history_kept")) {
+          if (!previous) throw std::runtime_error("history_kept without an earlier entry");
+          const auto kept = integer_from(e.at("history_kept"), "history_kept", 0,
+                                         static_cast<long long>(previous->history_.size()));
+          s.history_.assign(previous->history_.begin(),
+                            previous->history_.begin() + static_cast<std::ptrdiff_t>(kept));
+        } else {
+          throw std::runtime_error("history is missing");
+        }
+        if (static_cast<int>(s.history_.size()) != s.search_.iteration()) {
+          throw std::runtime_error("history length differs from the number of submissions");
+        }
+        bool undone_into_session = false;
+        if (e.contains("undone_into_session")) {
+          if (!e.at("undone_into_session").is_boolean()) {
+            throw std::runtime_error("undone_into_session must be true or false");
+          }
+          undone_into_session = e.at("undone_into_session").get<bool>();
+        }
+        if (e.contains("search_undos")) session.redo_.back().next_by_undo = true;
+        s.saved_holds_ = session.saved_holds_;
+        s.update_views();
+        previous = std::make_shared<const Session>(std::move(s));
+        session.redo_.push_back({previous, undone_into_session && i + 1 == a.size()});
+      } catch (const json::exception& ex) {
+        throw std::runtime_error("redo[" + std::to_string(i) +
+                                 "]: " + sps::json_fields::library_message(ex));
+      } catch (const std::exception& ex) {
+        throw std::runtime_error("redo[" + std::to_string(i) + "]: " + ex.what());
+      }
+    }
+  }
+};
 
 Session::Session(const SessionSettings& settings) : Session(settings, sps::SearchOptions{}) {}
 
@@ -443,6 +595,25 @@ void Session::start_over() {
   update_views();
 }
 
+void Session::push_redo(Session before, bool by_undo) {
+  before.redo_.clear();
+  before.redo_problem_.clear();
+  before.prepared_.reset();
+  redo_.push_back({std::make_shared<const Session>(std::move(before)), by_undo});
+  if (static_cast<int>(redo_.size()) > kMaxRedo) redo_.erase(redo_.begin());
+}
+
+std::optional<Session> Session::pop_redo() {
+  if (redo_.empty()) return std::nullopt;
+  Session next = *redo_.back().state;
+  redo_.pop_back();
+  next.redo_ = std::move(redo_);
+  redo_.clear();
+  if (!next.projector_ && projector_) next.set_constraint_projector(projector_);
+  if (!next.distance_ && distance_) next.set_perceptual_distance(distance_, policy_);
+  return next;
+}
+
 Eigen::VectorXd Session::current_best() const {
   if (!path_.empty()) {
     const auto& clicked = path_.back();
@@ -465,18 +636,13 @@ std::string Session::to_json() const {
   j["search"] = json::parse(search_.to_json());
   j["path"] = path_json(path_);
   j["start_point"] = vector_json(start_point_);
-  json history = json::array();
-  for (const auto& h : history_) {
-    json entry{{"chosen", vector_json(h.chosen)}, {"path", path_json(h.path)}};
-    if (h.set_by_sliders) entry["set_by_sliders"] = true;
-    history.push_back(std::move(entry));
-  }
-  j["history"] = history;
+  j["history"] = history_json(history_);
   if (!saved_holds_.empty()) {
     json holds = json::array();
     for (const auto& h : saved_holds_) holds.push_back({{"name", h.name}, {"value", h.value}});
     j["holds"] = holds;
   }
+  if (!redo_.empty()) j["redo"] = SessionJson::redo_json(*this);
   // A model path that is not UTF-8 cannot be stored as it is; it is saved with U+FFFD
   // replacement characters (the resume then reports the model missing) rather than failing.
   return j.dump(1, ' ', false, json::error_handler_t::replace);
@@ -523,30 +689,10 @@ Session Session::from_json(const std::string& text) {
     }
     session.start_point_ = vector_from(j.at("start_point"), settings.components, "start_point");
     const json& history = j.at("history");
-    if (!history.is_array()) throw std::runtime_error("history must be an array");
-    if (static_cast<int>(history.size()) != session.search_.iteration()) {
+    if (history.is_array() && static_cast<int>(history.size()) != session.search_.iteration()) {
       throw std::runtime_error("history length differs from the number of submissions");
     }
-    for (const auto& h : history) {
-      HistoryEntry entry;
-      entry.chosen = vector_from(h.at("chosen"), settings.components, "history chosen");
-      entry.path = path_from(h.at("path"), n, "history path");
-      if (h.contains("set_by_sliders")) {
-        if (!h.at("set_by_sliders").is_boolean()) {
-          throw std::runtime_error("history set_by_sliders must be true or false");
-        }
-        entry.set_by_sliders = h.at("set_by_sliders").get<bool>();
-      }
-      // Undo reopens a finished plane with its clicks minus the last: each finished plane has
-      // one click per zoom level, fewer when it ended early (no visible change left), or those
-      // made before the point was set with the expert sliders (adopt_point).
-      if (static_cast<int>(entry.path.size()) > settings.zoom_levels) {
-        throw std::runtime_error("history path has " + std::to_string(entry.path.size()) +
-                                 " clicks, expected at most " +
-                                 std::to_string(settings.zoom_levels));
-      }
-      session.history_.push_back(std::move(entry));
-    }
+    session.history_ = history_from(history, settings);
     if (static_cast<int>(session.history_.size()) != session.search_.iteration()) {
       throw std::runtime_error("history length differs from the number of submissions");
     }
@@ -569,6 +715,16 @@ Session Session::from_json(const std::string& text) {
           throw std::runtime_error("holds value of " + held.name + " is not a positive number");
         }
         session.saved_holds_.push_back(std::move(held));
+      }
+    }
+    // Redo (optional: older files have none). A broken redo part costs only the redo stack:
+    // the session itself was read, and redo_problem() says what was wrong where.
+    if (j.contains("redo")) {
+      try {
+        SessionJson::read_redo(session, j.at("redo"));
+      } catch (const std::exception& e) {
+        session.redo_.clear();
+        session.redo_problem_ = e.what();
       }
     }
     session.update_views();

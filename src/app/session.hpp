@@ -215,6 +215,25 @@ class Session {
   // The body the user started from (the centre of the first plane).
   const Eigen::VectorXd& start_point() const { return start_point_; }
 
+  // Redo: the states Undo and Start over took back, newest last, each a whole session
+  // without a redo stack of its own. Kept with the session (and in its file), so that Redo
+  // still brings them back after the window was closed and the session resumed.
+  int redo_depth() const { return static_cast<int>(redo_.size()); }
+  // `before` is this session as it was before the change that made it what it is now; its
+  // own redo stack is dropped. `by_undo`: this session's search is `before`'s with
+  // submissions undone (Undo), which lets the file store a count instead of a second copy
+  // of a long search. Keeps at most kMaxRedo states (the oldest go).
+  void push_redo(Session before, bool by_undo);
+  // The newest state taken back, carrying the rest of the stack, with this session's
+  // perceptual distance and holds where it has none (a state read from a file has neither:
+  // they are not saved); nullopt when there is none.
+  std::optional<Session> pop_redo();
+  void clear_redo() { redo_.clear(); }
+  static constexpr int kMaxRedo = 64;
+  // Why the redo part of the file this session was read from could not be used ("redo[2]
+  // history_kept: ..."), or "". The session itself is then loaded without a redo stack.
+  const std::string& redo_problem() const { return redo_problem_; }
+
   std::string to_json() const;
   // Throws std::runtime_error with a readable message on anything malformed.
   static Session from_json(const std::string& text);
@@ -250,6 +269,17 @@ class Session {
   mutable std::vector<std::pair<sps::GridView, std::vector<sps::GridPoint>>> held_cells_;
   std::vector<HeldValue> saved_holds_;     // what to_json() writes as "holds"
   std::optional<PreparedPlane> prepared_;  // for the next update_views(), if it matches
+  // The redo stack, oldest first. The states are shared, never changed, so a copy of the
+  // session (autosave hands one to its thread) does not copy them.
+  struct RedoEntry {
+    std::shared_ptr<const Session> state;
+    // The next newer state's search (the next entry's, or this session's for the newest) is
+    // this one's with submissions undone.
+    bool next_by_undo = false;
+  };
+  std::vector<RedoEntry> redo_;
+  std::string redo_problem_;
+  friend struct SessionJson;
 };
 
 }  // namespace app

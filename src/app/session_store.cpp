@@ -32,7 +32,8 @@ fs::path default_session_path() {
 void save_session(const Session& session, const fs::path& path) {
   const std::string text = session.to_json();
   try {
-    (void)Session::from_json(text);
+    const Session back = Session::from_json(text);
+    if (!back.redo_problem().empty()) throw std::runtime_error(back.redo_problem());
   } catch (const std::exception& e) {
     throw std::runtime_error(
         "did not save " + path.string() +
@@ -165,6 +166,11 @@ LoadResult load_session(const fs::path& path, bool move_corrupt_aside) {
   }
   try {
     result.session = Session::from_json(text);
+    if (!result.session->redo_problem().empty()) {
+      result.redo_problem = "session file " + path.string() + ": " +
+                            result.session->redo_problem() +
+                            "; resumed without the steps Redo would bring back";
+    }
     return result;
   } catch (const std::exception& e) {
     if (!move_corrupt_aside) {

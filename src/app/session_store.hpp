@@ -61,8 +61,11 @@ GuardedSave save_session_guarded(const Session& session, const std::filesystem::
                                  const FileStamp& expected);
 
 struct LoadResult {
-  std::optional<Session> session;   // set when the file existed and was valid
-  std::string problem;              // non-empty when the file was unreadable or corrupt
+  std::optional<Session> session;  // set when the file existed and was valid
+  std::string problem;             // non-empty when the file was unreadable or corrupt
+  // Non-empty when only the file's redo part was unusable ("<file>: redo[2]: ..."): the
+  // session loaded without its redo stack.
+  std::string redo_problem;
   std::filesystem::path set_aside;  // where a corrupt file was moved to
   FileStamp stamp;                  // the file as it was read
 };

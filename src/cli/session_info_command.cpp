@@ -53,7 +53,12 @@ int run(int argc, char** argv) {
             << (session->submission_pending() ? " (waiting for the optimizer)" : "") << "\n"
             << "preference data: " << search.data().point_count() << " points, "
             << search.data().preference_count() << " preferences\n"
-            << "seed: " << s.seed << "\n";
+            << "seed: " << s.seed << "\n"
+            << "redo: " << session->redo_depth() << " step"
+            << (session->redo_depth() == 1 ? "" : "s")
+            << (session->redo_problem().empty() ? ""
+                                                : " (unusable: " + session->redo_problem() + ")")
+            << "\n";
   // The window resumes a session only if its design space opens (the body model or the
   // photo) with the same number of dimensions.
   try {

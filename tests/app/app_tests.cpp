@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -814,4 +815,136 @@ TEST_CASE("the catalogue of space kinds: the first is the default, names and fil
   REQUIRE(opened.size() == 2);
   CHECK(opened[0] == "shape:m.npz");
   CHECK(opened[1] == "colour:");
+}
+
+TEST_CASE("the redo stack is saved with the session and Redo brings each step back after a reload",
+          "[app][session-file][redo]") {
+  app::Session session(small_settings());
+  finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
+  finish_plane(session, {{1, 0}, {0, 2}, {2, 2}, {1, 1}});
+  session.click({2, 0});
+  // Each state as it was before an undo, oldest first: what the redos must give back.
+  std::vector<std::string> states;
+  const auto undo = [&](bool plane) {
+    app::Session before = session;
+    states.push_back(session.to_json());
+    REQUIRE((plane ? session.undo_plane() : session.undo_click()));
+    session.push_redo(std::move(before), true);
+  };
+  undo(false);  // the click on the third plane
+  undo(false);  // reopens the second plane with three of its clicks
+  undo(true);   // those clicks
+  undo(true);   // the first plane
+  REQUIRE(session.planes_done() == 0);
+  REQUIRE(session.redo_depth() == 4);
+
+  const std::string text = session.to_json();
+  const auto j = nlohmann::json::parse(text);
+  REQUIRE(j.contains("redo"));
+  REQUIRE(j["redo"].size() == 4);
+  // Only the oldest step holds a whole search; the others are it with submissions undone.
+  CHECK(j["redo"][0].contains("search"));
+  for (std::size_t i = 1; i < 4; ++i) {
+    CHECK_FALSE(j["redo"][i].contains("search"));
+    CHECK(j["redo"][i].contains("search_undos"));
+  }
+  CHECK(j["redo"][1]["search_undos"] == 0);  // the click on the third plane: no submission
+  CHECK(j["redo"][2]["search_undos"] == 1);
+
+  app::Session back = app::Session::from_json(text);
+  CHECK(back.redo_problem().empty());
+  CHECK(back.redo_depth() == 4);
+  CHECK(test_support::first_difference(back.to_json(), text) == "");
+  for (int k = 3; k >= 0; --k) {
+    auto next = back.pop_redo();
+    REQUIRE(next);
+    back = std::move(*next);
+    CHECK(test_support::first_difference(back.to_json(), states[static_cast<std::size_t>(k)]) ==
+          "");
+  }
+  CHECK_FALSE(back.pop_redo());
+  CHECK(back.planes_done() == 2);
+  CHECK(back.clicks_on_plane() == 1);
+  CHECK((back.current_best() - app::Session::from_json(states[0]).current_best()).norm() < 1e-12);
+}
+
+TEST_CASE(
+    "start over is redone after a reload; files without redo load; a broken redo part is "
+    "reported by field and costs only the redo steps",
+    "[app][session-file][redo]") {
+  TempDir dir;
+  app::Session session(small_settings());
+  finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
+  finish_plane(session, {{1, 0}, {0, 2}, {2, 2}, {1, 1}});
+  const std::string before_start_over = session.to_json();
+  {
+    app::Session before = session;
+    session.start_over();
+    session.push_redo(std::move(before), false);
+  }
+  REQUIRE(session.planes_done() == 0);
+  const std::string text = session.to_json();
+  auto j = nlohmann::json::parse(text);
+  REQUIRE(j["redo"].size() == 1);
+  CHECK(j["redo"][0].contains("search"));
+  {
+    app::Session back = app::Session::from_json(text);
+    auto next = back.pop_redo();
+    REQUIRE(next);
+    CHECK(next->planes_done() == 2);
+    CHECK(test_support::first_difference(next->to_json(), before_start_over) == "");
+  }
+
+  // A file from before redo was saved.
+  auto old = j;
+  old.erase("redo");
+  const app::Session from_old = app::Session::from_json(old.dump());
+  CHECK(from_old.redo_depth() == 0);
+  CHECK(from_old.redo_problem().empty());
+
+  // Broken redo parts: the session loads, the redo stack is empty, the problem names the field.
+  const auto broken = [&](const std::function<void(nlohmann::json&)>& edit) {
+    auto b = j;
+    edit(b);
+    return b.dump();
+  };
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {broken([](nlohmann::json& b) { b["redo"] = 5; }), "redo must be an array"},
+      {broken([](nlohmann::json& b) { b["redo"][0].erase("search"); }), "redo[0]: search"},
+      {broken([](nlohmann::json& b) { b["redo"][0]["history"][1]["chosen"][0] = 7.5; }),
+       "redo[0]: history chosen"},
+      {broken([](nlohmann::json& b) {
+         b["redo"].push_back({{"path", nlohmann::json::array()},
+                              {"start_point", b["start_point"]},
+                              {"search_undos", 3},
+                              {"history_kept", 0}});
+       }),
+       "redo[1]: search_undos"},
+      {broken([](nlohmann::json& b) {
+         b["redo"].push_back({{"path", nlohmann::json::array()},
+                              {"start_point", b["start_point"]},
+                              {"search_undos", 1},
+                              {"history_kept", 2}});
+       }),
+       "redo[1]: history length"},
+  };
+  for (const auto& [bad, expected] : cases) {
+    INFO(expected);
+    const app::Session loaded = app::Session::from_json(bad);
+    CHECK(loaded.planes_done() == 0);
+    CHECK(loaded.redo_depth() == 0);
+    CHECK(loaded.redo_problem().find(expected) != std::string::npos);
+  }
+  // Through the store: the file is named, the session is kept, nothing is set aside.
+  const fs::path file = dir.path / "s.json";
+  {
+    std::ofstream out(file);
+    out << cases[1].first;
+  }
+  const auto result = app::load_session(file);
+  CHECK(result.problem.empty());
+  REQUIRE(result.session);
+  CHECK(result.redo_problem.find(file.string()) != std::string::npos);
+  CHECK(result.redo_problem.find("redo[0]: search") != std::string::npos);
+  CHECK(fs::exists(file));
 }

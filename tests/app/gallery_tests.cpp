@@ -23,6 +23,7 @@
 #include "app/gallery_view.hpp"
 #include "app/session_store.hpp"
 #include "app/ui_prefs.hpp"
+#include "common/first_difference.hpp"
 #include "render/headless_context.hpp"
 #include "render/photo_renderer.hpp"
 #include "spaces/photo_enhancement.hpp"
@@ -158,6 +159,89 @@ TEST_CASE("Undo plane has one meaning and Redo brings it back", "[gallery]") {
   c.queue(intent::ClickCell{0, 0});
   c.begin_frame(t + 21);
   CHECK_FALSE(c.can_redo());
+}
+
+TEST_CASE("Redo survives a relaunch: the session file keeps what Undo took back",
+          "[gallery][redo]") {
+  TempDir dir;
+  const fs::path file = dir.path / "s.json";
+  auto o = options(file);
+  o.zoom_levels = 2;
+  std::vector<std::string> searches;  // before each undo
+  std::vector<Eigen::VectorXd> bests;
+  {
+    GalleryController c(o, &spaces::open_space, 0.0);
+    c.begin_frame(0.0);
+    double t = finish_plane(c, 0.0);
+    t = finish_plane(c, t);
+    c.queue(intent::ClickCell{2, 1});
+    c.begin_frame(t);
+    t += 5;
+    c.begin_frame(t);
+    REQUIRE(c.session().planes_done() == 2);
+    REQUIRE(c.session().clicks_on_plane() == 1);
+    for (int k = 0; k < 3; ++k) {
+      searches.push_back(c.session().search().to_json());
+      bests.push_back(c.session().current_best());
+      if (k == 0) {
+        c.queue(intent::UndoClick{});
+      } else {
+        c.queue(intent::UndoPlane{});
+      }
+      t += 5;
+      c.begin_frame(t);
+    }
+    // The click, then the two planes: back at the start.
+    REQUIRE(c.session().planes_done() == 0);
+    REQUIRE(c.session().clicks_on_plane() == 0);
+    REQUIRE(c.can_redo());
+    CHECK(c.autosave_problem().empty());
+  }
+  auto resumed = o;
+  resumed.resume = app::ResumePolicy::kYes;
+  {
+    GalleryController c(resumed, &spaces::open_space, 0.0);
+    c.begin_frame(0.0);
+    REQUIRE(c.session().planes_done() == 0);
+    CHECK(c.message().kind != app::MessageKind::kError);
+    double t = 1.0;
+    for (int k = 2; k >= 0; --k) {
+      REQUIRE(c.can_redo());
+      c.queue(intent::Redo{});
+      t += 5;
+      c.begin_frame(t);
+      const auto i = static_cast<std::size_t>(k);
+      CHECK(test_support::first_difference(c.session().search().to_json(), searches[i]) == "");
+      CHECK((c.session().current_best() - bests[i]).norm() < 1e-12);
+      // Still the space's perceptual zoom (the distance is not saved with the file).
+      CHECK(c.session().has_perceptual_distance());
+    }
+    CHECK(c.session().planes_done() == 2);
+    CHECK(c.session().clicks_on_plane() == 1);
+    CHECK_FALSE(c.can_redo());
+    // Undone once more and closed: the next launch can redo it again.
+    c.queue(intent::UndoClick{});
+    c.begin_frame(t + 5);
+  }
+  {
+    GalleryController c(resumed, &spaces::open_space, 0.0);
+    c.begin_frame(0.0);
+    CHECK(c.session().clicks_on_plane() == 0);
+    REQUIRE(c.can_redo());
+  }
+  // A redo part that cannot be used is said by file and field; the session itself resumes.
+  nlohmann::json j;
+  std::ifstream(file) >> j;
+  REQUIRE(j.contains("redo"));
+  j["redo"][0]["path"] = "broken";
+  std::ofstream(file) << j.dump();
+  GalleryController c(resumed, &spaces::open_space, 0.0);
+  c.begin_frame(0.0);
+  CHECK(c.session().planes_done() == 2);
+  CHECK_FALSE(c.can_redo());
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK(c.message().text.find(file.string()) != std::string::npos);
+  CHECK(c.message().text.find("redo[0]: path") != std::string::npos);
 }
 
 TEST_CASE("expert sliders: Use this makes the point the current best, preferred over the last",
