@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Holds benchmark (issue 13): the body benchmark's zoom-jnd user with and without holding the
+# Holds benchmark: the body benchmark's zoom-jnd user with and without holding the
 # target's height (`simulate --function body --hold height`), gap per plane. Writes
 # docs/benchmarks/holds_{free,height}.csv and the "Holds" section of docs/benchmarks.md
 # (between its holds-begin/holds-end markers).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Loading an SMPL-X-sized model file (issue 20, item 6): writes look-alike fixtures with the
+# Loading an SMPL-X-sized model file: writes look-alike fixtures with the
 # test fixture writer (10,475 vertices, 400 shape components, float64 arrays, 24 joints; no SMPL
 # data), then times `inspect` and `measure --components 10 / 400` on them and prints wall time
 # and peak RSS (best of RUNS). With a second binary (e.g. one built from an older commit) it

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The body benchmark with a person who sees what the window shows (issue: grids a person can
-# tell apart): `simulate --function body --jnd-px 2 --cell-px N` for the default window's cell
+# The body benchmark with a person who sees what the window shows:
+# `simulate --function body --jnd-px 2 --cell-px N` for the default window's cell
 # (210 px) and a 400 px cell, SPS against random planes and SLS, and SPS with a perfect chooser
 # (`--jnd-mm 0`) for reference. Writes docs/benchmarks/pixel_*.csv and the "pixel person"
 # section of docs/benchmarks.md (between its pixel-begin/pixel-end markers).
@@ -37,9 +37,13 @@ lines = [
     "## The pixel person: what the window's cells show",
     "",
     f"`tools/pixel_person_benchmark.sh build {trials} {planes}`: the body benchmark above with a",
-    "person who cannot tell apart cells whose RMS distances to the target lie within what 2 px",
-    "show in a cell of N px (`--jnd-px 2 --cell-px N`; the cell camera shows 2.144 m, so 2 px",
-    "are 20.4 mm at the default window's 210 px cells and 10.7 mm at 400 px). The session",
+    "person who sees how far each cell is from the body in mind as its largest visible shift",
+    "(the largest vertex distance to the target, the measure the window's look-alike test uses",
+    "between cells) and cannot tell apart cells whose shifts lie within what 2 px show in a",
+    "cell of N px (`--jnd-px 2 --cell-px N`; the cell camera shows 2.144 m, so 2 px are",
+    "20.4 mm at the default window's 210 px cells and 10.7 mm at 400 px). Before, this person",
+    "compared RMS distances with that threshold, which is finer than any outline shows, and",
+    "stalled near 24 mm at 210 px whatever the method. The session",
     "uses the same threshold for its zoom (as the window does at that cell size) and as the",
     "planes' smallest side, and duplicate_grids counts grids with two cells closer than it.",
     "Gap = RMS vertex distance (mm)",

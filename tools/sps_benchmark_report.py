@@ -276,7 +276,7 @@ def body_section(results, trials):
                 p("- SPS beats %s at plane 10 (mean gap): %.2f vs %.2f mm, **%s**" % (
                     other, a, b, "met" if a < b else "missed"))
         p()
-    p("**The centre: the estimate of the body in mind** (the last change for issue 9,")
+    p("**The centre: the estimate of the body in mind** (a change of")
     p("2026-11-24). Logging every plane of the search as it was (`sps-mean-centre`) showed two")
     p("things. First, the planes were hardly better oriented than random ones: on 60 trials a")
     p("plane's best point removed on average 24% of the squared distance between its centre and")

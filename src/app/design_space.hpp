@@ -54,14 +54,14 @@ class CellContent {
   virtual void draw(int width, int height, const CellLook& look) = 0;
 };
 
-// Where a target solve ended (issue 13).
+// Where a target solve ended.
 struct TargetSolve {
   Eigen::VectorXd x;
   bool reached = false;
   std::string message;  // what was reached, or the nearest reachable values
 };
 
-// The window's measurements panel (issue 13): what the view keeps between frames.
+// The window's measurements panel: what the view keeps between frames.
 struct MeasurementPanelState {
   bool imperial = false;
   bool all_rows = false;  // also the secondary measurements (a body's limbs and neck)
@@ -116,7 +116,7 @@ class DesignSpace {
     return {};
   }
 
-  // What a person can see of a change (issue 9): how different the cells of some points look
+  // What a person can see of a change: how different the cells of some points look
   // (entry (i, j) in mm, largest difference), so the session never shows a grid of
   // look-alikes, and how much each coordinate changes a cell over its range (mm), so the
   // optimizer does not explore invisible directions as if they mattered. The window installs
@@ -142,7 +142,7 @@ class DesignSpace {
   // population); empty where unknown.
   virtual sps::Population population() const { return {}; }
 
-  // Measurement targets and holds (issue 13). Names that may be held or solved for (a
+  // Measurement targets and holds. Names that may be held or solved for (a
   // body's "height", "mass", ...; none for a photo).
   virtual std::vector<std::string> measurement_names() const { return {}; }
   // Holds "name" or "name=value" (the value in SI or with a unit, "180cm"; a bare name holds

@@ -84,7 +84,7 @@ struct Inspect {
 struct UsePoint {
   Eigen::VectorXd x;
 };
-// Holds (issue 13): the whole set, each "name" (held at the current best's value) or
+// Holds: the whole set, each "name" (held at the current best's value) or
 // "name=value"; empty releases them (the preference data stay).
 struct SetHolds {
   std::vector<std::string> holds;

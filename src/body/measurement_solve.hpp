@@ -1,4 +1,4 @@
-// Bodies that meet typed measurements (issue 13): "1.80 m, about 85 kg".
+// Bodies that meet typed measurements: "1.80 m, about 85 kg".
 //
 // The measurement functions m(x) of a body model are piecewise smooth in the shape
 // coordinates x in [0,1]^K (beta = 6x - 3): height, volume and the joint lengths are smooth;

@@ -120,7 +120,7 @@ struct MeasurementKind {
   Quantity quantity;
   double Measurements::*field;
   bool needs_girths;  // needs the slices (measure(..., girths = true))
-  // How close a held measurement stays in every cell (issue 13): 1 cm for lengths and girths,
+  // How close a held measurement stays in every cell: 1 cm for lengths and girths,
   // 1.5 kg for mass, 0.5 kg/m^2 for BMI (about 1.5 kg at 1.75 m).
   double hold_tolerance;
   // A plausible adult value to type, as the window's placeholder: metric and imperial.

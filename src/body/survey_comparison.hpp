@@ -1,7 +1,6 @@
 // A body model's population against a survey's: the tool's measurements of bodies drawn as
 // the model is meant to be sampled (betas ~ N(0, I), the SMPL convention) beside the same
-// measurements of the surveyed people. What `bench-survey` prints (issue: body models measured
-// against ANSUR II).
+// measurements of the surveyed people. What `bench-survey` prints.
 #pragma once
 
 #include <string>

@@ -5,7 +5,7 @@
 // coefficients are standardized: N(0, 1) over the people it was built from) the MAP estimate
 // averages many guesses between look-alike cells and falls back on typical bodies along
 // directions the choices never resolved, where the GP's posterior-mean maximum wanders with
-// the guesses (docs/benchmarks.md, issue 9).
+// the guesses (docs/benchmarks.md).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Holds (issue 13) through render-grid: every cell's measurements (--cells-csv) within the hold
+# Holds through render-grid: every cell's measurements (--cells-csv) within the hold
 # tolerance (1 cm for lengths, 1.5 kg for mass), every cell inside the box [0,1]^n, and the
 # cells pairwise different in what is not held. Bad holds are refused with a message.
 set -euo pipefail

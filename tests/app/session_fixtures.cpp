@@ -83,7 +83,7 @@ std::vector<SessionFixture> broken_session_fixtures() {
     j["history"][0]["path"].push_back(json::array({1, 1}));
   });
   add("start-point-string", "start_point", [](json& j) { j["start_point"][0] = "half"; });
-  // Holds (issue 13) are optional; when present, each a name and a positive value.
+  // Holds are optional; when present, each a name and a positive value.
   add("holds-not-array", "holds must be an array", [](json& j) { j["holds"] = "height"; });
   add("holds-value-string", "holds entries", [](json& j) {
     j["holds"] = json::array({{{"name", "height"}, {"value", "tall"}}});

@@ -18,7 +18,7 @@ struct SessionFixture {
 // window (max_points 24) smaller than its points, so that the window slides.
 std::string good_session_json();
 
-// The defects of issue 10 and other attacks; each must be refused with `expected`.
+// Defects users met in session files, and other attacks; each must be refused with `expected`.
 std::vector<SessionFixture> broken_session_fixtures();
 
 }  // namespace test_fixtures

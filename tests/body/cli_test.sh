@@ -109,7 +109,7 @@ expect "$out" "usable  no: .*cut.npz"
 if out=$("$exe" measure --model "$dir/missing.npz" 2>&1); then fail "missing model accepted"; fi
 expect "$out" "missing.npz: file not found"
 
-echo "== messages users met (issue 10)"
+echo "== messages users met"
 refuse() {  # refuse PATTERN COMMAND...: the command must fail with a message matching PATTERN
   local pattern=$1; shift
   if out=$("$@" 2>&1); then fail "accepted: $*"; fi
@@ -133,7 +133,7 @@ refuse "--vrm-name: the text is not valid UTF-8" \
   "$exe" export --model "$dir/cyl.npz" --vrm-name $'caf\xe9' -o "$dir/latin1.vrm"
 out=$("$exe" measure --model "$dir/cyl.npz" --betas 1e-320) || fail "--betas 1e-320 refused: $out"
 
-echo "== measurement targets (issue 13): the cylinder's height is 1.7 (1 + beta2)"
+echo "== measurement targets: the cylinder's height is 1.7 (1 + beta2)"
 out=$("$exe" measure --model "$dir/cyl.npz" --target height=2.04 2>&1) || fail "target refused: $out"
 echo "$out"
 expect "$out" "height  2.04[0-9]* m"

@@ -1,4 +1,4 @@
-// Loading only the shape columns that are used (issue 20, item 6): with K components the loader
+// Loading only the shape columns that are used: with K components the loader
 // reads and converts K columns of shapedirs, in every storage variant (C / Fortran order,
 // float32 / float64, stored / deflated), and gets exactly the numbers a full load has.
 #include <catch2/catch.hpp>

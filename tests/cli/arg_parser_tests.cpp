@@ -52,7 +52,7 @@ TEST_CASE("bad values are reported with the option name", "[cli]") {
   CHECK_THROWS_WITH(parse({"cmd"}).require("model"), Catch::Contains("--model"));
 }
 
-TEST_CASE("numbers users actually typed get the right message (issue 10)", "[cli]") {
+TEST_CASE("numbers users actually typed get the right message", "[cli]") {
   // "-inf" is a (bad) value of --betas, not a missing value.
   CHECK_THROWS_WITH(parse({"cmd", "--betas", "-inf"}, {}, {"betas"}).get_doubles("betas"),
                     Catch::Contains("'-inf' is not a number"));

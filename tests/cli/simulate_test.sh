@@ -60,7 +60,7 @@ gap() { awk '$1 == "1" { print $2 }' "$dir/m_$1.csv"; }
 differ() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d > 1e-3 * a) }'; }
 differ "$(gap neutral)" "$(gap female)" || fail "female run gives the neutral run's gap"
 differ "$(gap female)" "$(gap male)" || fail "male run gives the female run's gap"
-# Holds (issue 13): the target's height held in every grid; the title says so and the time
+# Holds: the target's height held in every grid; the title says so and the time
 # spent projecting is reported.
 out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --hold height \
       --hold mass 2>"$dir/hold.err")
