@@ -67,7 +67,8 @@ struct PlaneSearchSettings {
 // becomes its corner c' - u' (no fold of look-alike cells behind it); u is lengthened to
 // `min_length` in `scale` units where the box allows, or replaced by the visible part of its
 // direction when it is invisible; v is made orthogonal to u in the perceptual metric and as
-// long as min_length and half of u, within the coordinates that leave room.
+// long as min_length and half of u, within the coordinates that leave room (in a tangent
+// space, with every coordinate: fitted into the box as it is).
 // With keep_centre the plane is never moved forward (c stays where it is). Every direction
 // taken is one of `space` (u and v in it stay in it).
 void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length,

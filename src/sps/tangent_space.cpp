@@ -65,6 +65,12 @@ Eigen::VectorXd TangentSpace::through(const Eigen::VectorXd& origin,
   return y - (y - origin).cwiseProduct(Eigen::VectorXd::Ones(y.size()) - mask_);
 }
 
+Eigen::MatrixXd TangentSpace::projector(Eigen::Index dims) const {
+  Eigen::MatrixXd p(dims, dims);
+  for (Eigen::Index k = 0; k < dims; ++k) p.col(k) = project(Eigen::VectorXd::Unit(dims, k));
+  return p;
+}
+
 TangentSpace TangentSpace::without_coordinates(const Eigen::VectorXd& keep) const {
   TangentSpace space;
   space.mask_ = mask_.size() == keep.size() ? Eigen::VectorXd(mask_.cwiseProduct(keep)) : keep;

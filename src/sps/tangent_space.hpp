@@ -37,6 +37,9 @@ class TangentSpace {
   // computed as y less the normal part of y - origin (y itself on that plane).
   Eigen::VectorXd through(const Eigen::VectorXd& origin, const Eigen::VectorXd& y) const;
 
+  // P as a dims x dims matrix (the identity for the whole space).
+  Eigen::MatrixXd projector(Eigen::Index dims) const;
+
   // The directions of this space that also leave every coordinate k with keep(k) == 0
   // unchanged (keep holds 0 or 1 per coordinate): for the whole space a mask of coordinates,
   // applied as a product.
