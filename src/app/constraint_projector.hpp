@@ -1,31 +1,17 @@
-// Holds (issue 13): keeping some quantities of every shown cell fixed (a body's height, its
-// mass...) while the search explores everything else. The design space supplies the
-// projector (BodySpace: body/measurement_solve.hpp); the session only calls it where planes
-// and cells are made. No GL, no body model here.
+// Holds: keeping some quantities of every shown cell fixed (a body's height, its mass...)
+// while the search explores everything else. The design space supplies them as one object
+// (BodySpace: spaces/body_holds.hpp, on body/measurement_solve.hpp): the held surface the
+// optimizer builds its planes on (sps::SearchHold) and that every cell shown is projected
+// onto, with what the window and the session file say about it. No GL, no body model here.
 #pragma once
 
 #include <cstdio>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "sps/held_search.hpp"
-#include "sps/plane.hpp"
 
 namespace app {
-
-// The optimizer's plane adapted to the holds: its centre moved onto them and its directions
-// projected onto those that leave the held quantities unchanged to first order.
-class HeldPlane {
- public:
-  virtual ~HeldPlane() = default;
-  // A point of `plane` (or near it) moved back onto the holds: the nearest such point inside
-  // the box [0,1]^n. Thread-safe.
-  virtual Eigen::VectorXd project(const Eigen::VectorXd& x) const = 0;
-  sps::Plane plane;
-};
 
 // One held quantity as saved with the session: its name and value (the space's units, SI for
 // a body: metres, kg).
@@ -46,18 +32,15 @@ inline std::vector<std::string> hold_texts(const std::vector<HeldValue>& held) {
   return texts;
 }
 
-class ConstraintProjector {
+// The holds in force: the surface (for the optimizer, sps::PlaneSearch::set_hold, and for the
+// cells, sps::hold_plane and project_near) and its description.
+class ConstraintProjector : public sps::SearchHold {
  public:
-  virtual ~ConstraintProjector() = default;
-  virtual std::shared_ptr<const HeldPlane> hold(const sps::Plane& plane) const = 0;
   // What is held, for the window and messages: "height 180.0 cm, mass 90.0 kg".
   virtual std::string description() const = 0;
   // What is held, for the session file (a resumed session holds them again). Empty: the
-  // projector cannot be rebuilt from names and values (it is not saved).
+  // holds cannot be rebuilt from names and values (they are not saved).
   virtual std::vector<HeldValue> held_values() const { return {}; }
-  // The held surface for the optimizer (sps::PlaneSearch::set_hold), so that it builds its
-  // planes on it instead of having them projected afterwards. nullptr: it does not.
-  virtual std::shared_ptr<const sps::SearchHold> search_hold() const { return nullptr; }
 };
 
 }  // namespace app

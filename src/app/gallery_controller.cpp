@@ -423,10 +423,8 @@ void GalleryController::use_point(const Eigen::VectorXd& given, const std::strin
   Eigen::VectorXd x = given;
   std::string held_note;
   if (const auto* projector = session_->constraint_projector(); onto_holds && projector) {
-    if (const auto surface = projector->search_hold()) {
-      x = surface->project(given);
-      held_note = ", moved onto the holds (" + projector->description() + ")";
-    }
+    x = projector->project(given);
+    held_note = ", moved onto the holds (" + projector->description() + ")";
   }
   const Eigen::VectorXd previous_best = session_->current_best();
   Submission submission;

@@ -296,10 +296,11 @@ std::vector<sps::GridPoint> plane_cells(const sps::Plane& plane, int n, const sp
 
 // Each cell moved back onto the holds (inside the box), on two threads (projections are
 // thread-safe).
-void project_cells(const HeldPlane& held, std::vector<sps::GridPoint>& cells) {
+void project_cells(const sps::SearchHold& hold, const sps::HeldPlane& held,
+                   std::vector<sps::GridPoint>& cells) {
   sps::parallel_for(static_cast<int>(cells.size()), 2, [&](int i) {
     auto& p = cells[static_cast<std::size_t>(i)];
-    p.x = held.project(p.x);
+    p.x = hold.project_near(p.x, held.normals);
   });
 }
 
@@ -316,7 +317,7 @@ void Session::set_constraint_projector(std::shared_ptr<const ConstraintProjector
   // The optimizer builds its next planes on the held surface; before the first click it also
   // chooses its first plane again (on the surface, or without the hold). The preference data
   // stay either way, and a plane already clicked on stays as it is (projected).
-  search_.set_hold(projector_ ? projector_->search_hold() : nullptr);
+  search_.set_hold(projector_);
   if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
     start_point_ = search_.current_plane().c;
   }
@@ -331,7 +332,7 @@ std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
   auto cells = plane_cells(held_->plane, settings_.grid_size, view);
   // Holds: each cell moved back onto the held measurements (a zoom level's grid, made on the
   // window's thread; the first grid of a new plane comes prepared from the worker).
-  project_cells(*held_, cells);
+  project_cells(*projector_, *held_, cells);
   held_cells_.emplace_back(view, cells);
   return cells;
 }
@@ -341,10 +342,12 @@ PlanePreparer Session::plane_preparer() const {
   return [projector = projector_, n = settings_.grid_size](const sps::PlaneSearch& search) {
     PreparedPlane prepared;
     prepared.plane = search.current_plane();
-    prepared.held = projector->hold(prepared.plane);
+    prepared.holds = projector;
+    prepared.held =
+        std::make_shared<const sps::HeldPlane>(sps::hold_plane(*projector, prepared.plane));
     prepared.first_cells =
         plane_cells(prepared.held->plane, n, first_view(prepared.plane.is_line(), n));
-    project_cells(*prepared.held, prepared.first_cells);
+    project_cells(*projector, *prepared.held, prepared.first_cells);
     return prepared;
   };
 }
@@ -418,11 +421,13 @@ void Session::update_views() {
   held_cells_.clear();
   held_ = nullptr;
   const bool line = search_.current_plane().is_line();
-  if (projector_ && prepared_ && same_plane(prepared_->plane, search_.current_plane())) {
+  if (projector_ && prepared_ && prepared_->holds == projector_ &&
+      same_plane(prepared_->plane, search_.current_plane())) {
     held_ = prepared_->held;
     held_cells_.emplace_back(first_view(line, settings_.grid_size), prepared_->first_cells);
   } else if (projector_) {
-    held_ = projector_->hold(search_.current_plane());
+    held_ = std::make_shared<const sps::HeldPlane>(
+        sps::hold_plane(*projector_, search_.current_plane()));
   }
   prepared_.reset();
   views_.assign(1, first_view(line, settings_.grid_size));
@@ -532,7 +537,8 @@ Submission Session::submission() const {
         }
       }
       if (!shown) {
-        shown = held_->project(held_->plane.point(ps, pt).cwiseMax(0.0).cwiseMin(1.0));
+        shown = projector_->project_near(held_->plane.point(ps, pt).cwiseMax(0.0).cwiseMin(1.0),
+                                         held_->normals);
       }
       s.representatives.push_back(*shown);
     }

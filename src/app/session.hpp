@@ -103,9 +103,10 @@ struct Submission {
 // (a new plane took 150-210 ms on the window thread). Session::finish_plane() installs it
 // when it belongs to the plane the optimizer returned.
 struct PreparedPlane {
-  sps::Plane plane;                         // the optimizer's plane it was made from
-  std::shared_ptr<const HeldPlane> held;    // ConstraintProjector::hold(plane)
-  std::vector<sps::GridPoint> first_cells;  // the held cells of the plane's first view
+  sps::Plane plane;                                  // the optimizer's plane it was made from
+  std::shared_ptr<const ConstraintProjector> holds;  // the holds it was made with
+  std::shared_ptr<const sps::HeldPlane> held;        // sps::hold_plane(*holds, plane)
+  std::vector<sps::GridPoint> first_cells;           // the held cells of the plane's first view
 };
 // Makes the PreparedPlane of a search's current plane; thread-safe.
 using PlanePreparer = std::function<PreparedPlane(const sps::PlaneSearch&)>;
@@ -265,7 +266,7 @@ class Session {
   // Holds: the projector, the current plane held (made in update_views) and the projected
   // cells of the views asked for so far on this plane.
   std::shared_ptr<const ConstraintProjector> projector_;
-  std::shared_ptr<const HeldPlane> held_;
+  std::shared_ptr<const sps::HeldPlane> held_;
   mutable std::vector<std::pair<sps::GridView, std::vector<sps::GridPoint>>> held_cells_;
   std::vector<HeldValue> saved_holds_;     // what to_json() writes as "holds"
   std::optional<PreparedPlane> prepared_;  // for the next update_views(), if it matches

@@ -46,58 +46,49 @@ Eigen::VectorXf random_target(int k, std::uint64_t seed) {
   return betas;
 }
 
-// Holds with a stopwatch: where the time of a held search goes (the plane's centre solve and
-// tangent directions, and the projection of each cell).
+// Holds with a stopwatch: where the time of a held search goes (the surface's solves and
+// normals, for the optimizer's planes and the centres of the planes shown, and the projection
+// of each cell).
 struct HoldClock {
   std::mutex mutex;
-  double plane_seconds = 0.0;
+  double surface_seconds = 0.0;
   double cell_seconds = 0.0;
-  long planes = 0;
+  long surface_calls = 0;
   long cells = 0;
 };
 
-class TimedHeldPlane : public app::HeldPlane {
+class TimedHolds : public app::ConstraintProjector {
  public:
-  TimedHeldPlane(std::shared_ptr<const app::HeldPlane> inner, std::shared_ptr<HoldClock> clock)
-      : inner_(std::move(inner)), clock_(std::move(clock)) {
-    plane = inner_->plane;
+  TimedHolds(std::shared_ptr<const app::ConstraintProjector> inner,
+             std::shared_ptr<HoldClock> clock)
+      : inner_(std::move(inner)), clock_(std::move(clock)) {}
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+    return timed([&] { return inner_->project(x); }, false);
+  }
+  Eigen::MatrixXd normals(const Eigen::VectorXd& x) const override {
+    return timed([&] { return inner_->normals(x); }, false);
   }
   // Called from two threads at once (Session::cells_at): the clock has a lock.
-  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+  Eigen::VectorXd project_near(const Eigen::VectorXd& x,
+                               const Eigen::MatrixXd& nearby_normals) const override {
+    return timed([&] { return inner_->project_near(x, nearby_normals); }, true);
+  }
+  std::string description() const override { return inner_->description(); }
+  std::vector<app::HeldValue> held_values() const override { return inner_->held_values(); }
+
+ private:
+  template <typename F>
+  auto timed(const F& f, bool cell) const -> decltype(f()) {
     const auto t0 = std::chrono::steady_clock::now();
-    Eigen::VectorXd y = inner_->project(x);
+    auto result = f();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::lock_guard<std::mutex> lock(clock_->mutex);
-    clock_->cell_seconds += seconds;
-    ++clock_->cells;
-    return y;
+    (cell ? clock_->cell_seconds : clock_->surface_seconds) += seconds;
+    ++(cell ? clock_->cells : clock_->surface_calls);
+    return result;
   }
 
- private:
-  std::shared_ptr<const app::HeldPlane> inner_;
-  std::shared_ptr<HoldClock> clock_;
-};
-
-class TimedProjector : public app::ConstraintProjector {
- public:
-  TimedProjector(std::shared_ptr<const app::ConstraintProjector> inner,
-                 std::shared_ptr<HoldClock> clock)
-      : inner_(std::move(inner)), clock_(std::move(clock)) {}
-  std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
-    const auto t0 = std::chrono::steady_clock::now();
-    auto held = inner_->hold(plane);
-    clock_->plane_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++clock_->planes;
-    return std::make_shared<TimedHeldPlane>(std::move(held), clock_);
-  }
-  std::string description() const override { return inner_->description(); }
-  std::shared_ptr<const sps::SearchHold> search_hold() const override {
-    return inner_->search_hold();
-  }
-
- private:
   std::shared_ptr<const app::ConstraintProjector> inner_;
   std::shared_ptr<HoldClock> clock_;
 };
@@ -264,7 +255,7 @@ int run_body_simulation(const ArgParser& args) {
       for (const auto& name : hold_names) {
         holds.push_back(name + "=" + std::to_string(m.*(body::find_measurement(name)->field)));
       }
-      session.set_constraint_projector(std::make_shared<TimedProjector>(
+      session.set_constraint_projector(std::make_shared<TimedHolds>(
           spaces::make_body_holds(hold_model, holds, session.current_best()), clock));
     }
     if (perceptual_scale) {
@@ -277,10 +268,10 @@ int run_body_simulation(const ArgParser& args) {
     if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
   }
   if (!quiet) std::cerr << "\n";
-  if (clock->planes > 0) {
-    std::cerr << "holds: " << clock->planes << " held planes, "
-              << 1000.0 * clock->plane_seconds / clock->planes
-              << " ms each (centre solve + tangent, on the optimizer's worker); " << clock->cells
+  if (clock->surface_calls > 0) {
+    std::cerr << "holds: " << clock->surface_calls << " surface solves and normals, "
+              << 1000.0 * clock->surface_seconds / clock->surface_calls
+              << " ms each (the optimizer's planes and the centres shown); " << clock->cells
               << " cells projected, " << 1000.0 * clock->cell_seconds / std::max(1L, clock->cells)
               << " ms each\n";
   }

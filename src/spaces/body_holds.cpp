@@ -1,6 +1,5 @@
 #include "spaces/body_holds.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -10,56 +9,12 @@ namespace spaces {
 
 namespace {
 
-// A plane held on measurements: the centre solved onto them, the directions in their tangent
-// space (rescaled to the optimizer's lengths so the grid keeps its spread), and every cell
-// projected by Gauss-Newton steps that reuse the centre's Jacobian.
-class HeldBodyPlane : public app::HeldPlane {
+// The held measurements: points solved onto them by Gauss-Newton steps (the cells of a plane
+// reusing the Jacobian at its centre), normals their Jacobian (central differences,
+// body/measurement_solve.hpp).
+class BodyHolds : public app::ConstraintProjector {
  public:
-  HeldBodyPlane(std::shared_ptr<const body::MeasurementConstraints> constraints,
-                const sps::Plane& original)
-      : constraints_(std::move(constraints)) {
-    plane = original;
-    plane.c = constraints_->solve(original.c).x;
-    jacobian_ = constraints_->jacobian(plane.c);
-    const auto tangent = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
-      if (d.size() != plane.c.size() || d.isZero(0.0)) return d;
-      return constraints_->tangent(jacobian_, d);
-    };
-    Eigen::VectorXd u = tangent(original.u);
-    Eigen::VectorXd v = tangent(original.v);
-    if (u.norm() > 1e-9) u *= original.u.norm() / u.norm();
-    if (!plane.is_line() && v.norm() > 1e-9) {
-      if (u.norm() > 1e-9) v -= v.dot(u) / u.squaredNorm() * u;  // keep the rhombus square
-      if (v.norm() > 1e-9) v *= original.v.norm() / v.norm();
-    }
-    plane.u = u;
-    plane.v = v;
-    // The paper's opposite-vertex correction for the new directions: c - s u inside the box.
-    plane.u_neg_scale = 1.0;
-    for (Eigen::Index k = 0; k < u.size(); ++k) {
-      if (plane.c[k] - u[k] < 0.0)
-        plane.u_neg_scale = std::min(plane.u_neg_scale, plane.c[k] / u[k]);
-      if (plane.c[k] - u[k] > 1.0) {
-        plane.u_neg_scale = std::min(plane.u_neg_scale, (plane.c[k] - 1.0) / u[k]);
-      }
-    }
-    plane.u_neg_scale = std::max(0.0, plane.u_neg_scale);
-  }
-
-  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
-    return constraints_->solve(x, 10, &jacobian_).x;
-  }
-
- private:
-  std::shared_ptr<const body::MeasurementConstraints> constraints_;
-  Eigen::MatrixXd jacobian_;
-};
-
-// The held measurements as the optimizer's surface: points solved onto them, normals their
-// Jacobian (central differences, body/measurement_solve.hpp).
-class MeasurementSurface : public sps::SearchHold {
- public:
-  explicit MeasurementSurface(std::shared_ptr<const body::MeasurementConstraints> constraints)
+  explicit BodyHolds(std::shared_ptr<const body::MeasurementConstraints> constraints)
       : constraints_(std::move(constraints)) {}
   Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
     return constraints_->solve(x).x;
@@ -67,19 +22,11 @@ class MeasurementSurface : public sps::SearchHold {
   Eigen::MatrixXd normals(const Eigen::VectorXd& x) const override {
     return constraints_->jacobian(x);
   }
-
- private:
-  std::shared_ptr<const body::MeasurementConstraints> constraints_;
-};
-
-class BodyHolds : public app::ConstraintProjector {
- public:
-  explicit BodyHolds(std::shared_ptr<const body::MeasurementConstraints> constraints)
-      : constraints_(constraints),
-        surface_(std::make_shared<const MeasurementSurface>(std::move(constraints))) {}
-  std::shared_ptr<const sps::SearchHold> search_hold() const override { return surface_; }
-  std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
-    return std::make_shared<HeldBodyPlane>(constraints_, plane);
+  // A cell stops as soon as it is inside the tolerance, so a few steps from the centre's
+  // Jacobian do (a new Jacobian per cell would cost a measurement per coordinate).
+  Eigen::VectorXd project_near(const Eigen::VectorXd& x,
+                               const Eigen::MatrixXd& nearby_normals) const override {
+    return constraints_->solve(x, 10, &nearby_normals).x;
   }
   std::string description() const override {
     std::string text;
@@ -97,7 +44,6 @@ class BodyHolds : public app::ConstraintProjector {
 
  private:
   std::shared_ptr<const body::MeasurementConstraints> constraints_;
-  std::shared_ptr<const MeasurementSurface> surface_;
 };
 
 }  // namespace

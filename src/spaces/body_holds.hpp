@@ -1,9 +1,8 @@
 // Holds on a body's measurements (issue 13) as the session's constraint projector
-// (app/constraint_projector.hpp): each plane's centre is solved onto the held values, its
-// directions projected onto the tangent space of the held measurements (and rescaled to the
-// optimizer's lengths, so the grid keeps its spread), and every cell projected back by
-// Gauss-Newton steps that reuse the centre's Jacobian (body/measurement_solve.hpp). No GL:
-// the window's BodySpace and the body benchmark share it.
+// (app/constraint_projector.hpp): the surface where the held measurements keep their values,
+// points solved onto it and its normals the measurements' Jacobian; every cell of a plane is
+// projected by Gauss-Newton steps that reuse the Jacobian at the plane's centre
+// (body/measurement_solve.hpp). No GL: the window's BodySpace and the body benchmark share it.
 #pragma once
 
 #include <memory>

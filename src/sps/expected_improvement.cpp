@@ -21,6 +21,59 @@ double normal_cdf(double z) {
   return 0.5 * std::erfc(-z / std::sqrt(2.0));
 }
 
+// The box-clamped point space.through(origin, y), and which coordinates the clamp left as
+// they were (1) or moved (0). y itself for the whole space (y is then inside the box).
+Eigen::VectorXd on_plane(const TangentSpace& space, const Eigen::VectorXd& origin,
+                         const Eigen::VectorXd& y, Eigen::VectorXd* inside = nullptr) {
+  if (space.whole()) {
+    if (inside != nullptr) *inside = Eigen::VectorXd::Ones(y.size());
+    return y;
+  }
+  const Eigen::VectorXd raw = space.through(origin, y);
+  const Eigen::VectorXd x = raw.cwiseMax(0.0).cwiseMin(1.0);
+  if (inside != nullptr) *inside = ((x - raw).cwiseAbs().array() < 1e-15).cast<double>().matrix();
+  return x;
+}
+
+// argmax of f over the box-clamped plane through `origin` along `space` (the box itself for
+// the whole space), by local searches from `starts` (points of that plane): the optimizer
+// moves y in [0,1]^n and f sees x = origin + P (y - origin), so its gradient is P times f's
+// on the coordinates the clamp left free.
+Eigen::VectorXd maximize_on_plane(const Objective& f, const Eigen::VectorXd& origin,
+                                  const TangentSpace& space,
+                                  const std::vector<Eigen::VectorXd>& starts, int max_iterations,
+                                  int threads) {
+  const Eigen::Index d = origin.size();
+  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
+  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
+  const int count = static_cast<int>(starts.size());
+  std::vector<MaximizeResult> results(starts.size());
+  parallel_for(count, threads, [&](int s) {
+    const Objective fn = [&](const Eigen::VectorXd& y, Eigen::VectorXd& grad) {
+      Eigen::VectorXd inside;
+      const Eigen::VectorXd x = on_plane(space, origin, y, &inside);
+      Eigen::VectorXd g;
+      const double value = f(x, g);
+      grad = space.project(g.cwiseProduct(inside));  // P is symmetric
+      return value;
+    };
+    results[static_cast<std::size_t>(s)] = maximize_bounded(fn, starts[static_cast<std::size_t>(s)],
+                                                            lower, upper, max_iterations, 1e-9);
+  });
+  const auto best = std::max_element(
+      results.begin(), results.end(),
+      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
+  return on_plane(space, origin, best->x);
+}
+
+Objective posterior_mean_objective(const PreferenceModel& model) {
+  return [&model](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+    double mean = 0.0, variance = 0.0;
+    model.predict(x, mean, variance, &grad, nullptr);
+    return mean;
+  };
+}
+
 }  // namespace
 
 double expected_improvement(const PreferenceModel& model, const Eigen::VectorXd& x,
@@ -67,7 +120,8 @@ Eigen::VectorXd expected_improvement_batch(const PreferenceModel& model, const E
 
 Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, double best_mean,
                                               const Eigen::VectorXd& x_plus, std::mt19937_64& rng,
-                                              const EiSearchSettings& settings) {
+                                              const EiSearchSettings& settings,
+                                              const TangentSpace& space) {
   const int d = model.dims();
   const int candidate_count =
       settings.candidates > 0 ? settings.candidates : std::min(2000, 100 + 50 * d);
@@ -104,8 +158,9 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
   const int total = static_cast<int>(candidates.size());
   std::vector<double> scores(static_cast<std::size_t>(total));
   parallel_for(total, settings.threads, [&](int i) {
-    scores[static_cast<std::size_t>(i)] =
-        expected_improvement(model, candidates[static_cast<std::size_t>(i)], best_mean);
+    auto& x = candidates[static_cast<std::size_t>(i)];
+    if (!space.whole()) x = on_plane(space, x_plus, x);  // a point of the plane is its own image
+    scores[static_cast<std::size_t>(i)] = expected_improvement(model, x, best_mean);
   });
   std::vector<int> order(static_cast<std::size_t>(total));
   std::iota(order.begin(), order.end(), 0);
@@ -114,22 +169,16 @@ Eigen::VectorXd maximize_expected_improvement(const PreferenceModel& model, doub
     return scores[static_cast<std::size_t>(a)] > scores[static_cast<std::size_t>(b)] ||
            (scores[static_cast<std::size_t>(a)] == scores[static_cast<std::size_t>(b)] && a < b);
   });
-
-  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
-  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
-  std::vector<MaximizeResult> results(static_cast<std::size_t>(starts));
-  parallel_for(starts, settings.threads, [&](int s) {
-    const Objective fn = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
-      return expected_improvement(model, x, best_mean, &grad);
-    };
-    results[static_cast<std::size_t>(s)] = maximize_bounded(
-        fn, candidates[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])], lower, upper,
-        settings.max_iterations, 1e-9);
-  });
-  const auto best = std::max_element(
-      results.begin(), results.end(),
-      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
-  return best->x;
+  std::vector<Eigen::VectorXd> best_candidates;
+  for (int s = 0; s < starts; ++s) {
+    best_candidates.push_back(
+        candidates[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])]);
+  }
+  return maximize_on_plane(
+      [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+        return expected_improvement(model, x, best_mean, &grad);
+      },
+      x_plus, space, best_candidates, settings.max_iterations, settings.threads);
 }
 
 std::vector<int> best_observed_points(const PreferenceModel& model, int count) {
@@ -152,25 +201,21 @@ Eigen::VectorXd maximize_posterior_mean(const PreferenceModel& model,
                                         int max_iterations, int threads) {
   const std::vector<int> order = best_observed_points(model, starts);
   if (order.empty()) return fallback;
-  const int d = model.dims();
-  const int count = static_cast<int>(order.size());
-  const Eigen::VectorXd lower = Eigen::VectorXd::Zero(d);
-  const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
-  std::vector<MaximizeResult> results(static_cast<std::size_t>(count));
-  parallel_for(count, threads, [&](int s) {
-    const Objective fn = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
-      double mean = 0.0, variance = 0.0;
-      model.predict(x, mean, variance, &grad, nullptr);
-      return mean;
-    };
-    results[static_cast<std::size_t>(s)] =
-        maximize_bounded(fn, model.points().col(order[static_cast<std::size_t>(s)]), lower, upper,
-                         max_iterations, 1e-9);
-  });
-  const auto best = std::max_element(
-      results.begin(), results.end(),
-      [](const MaximizeResult& a, const MaximizeResult& b) { return a.value < b.value; });
-  return best->x;
+  std::vector<Eigen::VectorXd> from;
+  for (const int i : order) from.push_back(model.points().col(i));
+  return maximize_on_plane(posterior_mean_objective(model), fallback, TangentSpace(), from,
+                           max_iterations, threads);
+}
+
+Eigen::VectorXd maximize_posterior_mean_on_tangent(const PreferenceModel& model,
+                                                   const Eigen::VectorXd& anchor,
+                                                   const TangentSpace& space, int starts,
+                                                   int threads) {
+  const std::vector<int> order = best_observed_points(model, starts);
+  if (order.empty()) return anchor;
+  std::vector<Eigen::VectorXd> from{anchor};
+  for (const int i : order) from.push_back(on_plane(space, anchor, model.points().col(i)));
+  return maximize_on_plane(posterior_mean_objective(model), anchor, space, from, 60, threads);
 }
 
 }  // namespace sps

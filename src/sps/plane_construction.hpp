@@ -1,6 +1,8 @@
 // Building the next search plane (paper, "Plane Construction"): c = x+, u = x_EI - x+, v by
 // maximizing the mean EI over a 5x5 lattice on the plane with a soft orthogonality term, plus
-// the baselines (random planes, sequential line search) and the first plane.
+// the baselines (random planes, sequential line search) and the first plane. With holds the
+// same construction runs in the tangent space of the held surface at x+ (sps/held_search.hpp):
+// a free search is the held one in the whole space.
 #pragma once
 
 #include <random>
@@ -10,14 +12,16 @@
 
 #include "sps/plane.hpp"
 #include "sps/preference_model.hpp"
+#include "sps/tangent_space.hpp"
 
 namespace sps {
 
 // Largest beta in [0, 1] with x + beta * dir inside [0,1]^d.
 double fit_in_box(const Eigen::VectorXd& x, const Eigen::VectorXd& dir);
 
-// A random unit vector orthogonal to `u` (any unit vector if u is zero).
-Eigen::VectorXd random_orthogonal_direction(const Eigen::VectorXd& u, std::mt19937_64& rng);
+// A random unit vector of `space` orthogonal to `u` (any unit vector of it if u is zero).
+Eigen::VectorXd random_orthogonal_direction(const Eigen::VectorXd& u, std::mt19937_64& rng,
+                                            const TangentSpace& space = {});
 
 // First plane (no data): the largest square with a random orientation centred at 0.5 that
 // fits in the box.
@@ -63,14 +67,20 @@ struct PlaneSearchSettings {
 // becomes its corner c' - u' (no fold of look-alike cells behind it); u is lengthened to
 // `min_length` in `scale` units where the box allows, or replaced by the visible part of its
 // direction when it is invisible; v is made orthogonal to u in the perceptual metric and as
-// long as min_length and half of u, within the coordinates that leave room.
-// With keep_centre the plane is never moved forward (c stays where it is).
+// long as min_length and half of u, within the coordinates that leave room (in a tangent
+// space, with every coordinate: fitted into the box as it is).
+// With keep_centre the plane is never moved forward (c stays where it is). Every direction
+// taken is one of `space` (u and v in it stay in it).
 void shape_for_person(Plane& plane, const Eigen::VectorXd& scale, double min_length,
-                      bool keep_centre = false);
+                      bool keep_centre = false, const TangentSpace& space = {});
 
+// The SPS plane through x+ (c = x+ when no perceptual scale moves it), u towards x_EI and v
+// maximizing the plane's mean EI, all within `space` (the tangent space of the held surface at
+// x+; x_EI a point of the tangent plane there, as maximize_expected_improvement finds it in
+// that space).
 Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
                 const Eigen::VectorXd& x_ei, double best_mean, std::mt19937_64& rng,
-                const PlaneSearchSettings& settings);
+                const PlaneSearchSettings& settings, const TangentSpace& space = {});
 
 // c = x+, random orthogonal u, v of length 1 (points outside the box are clamped when shown).
 Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);

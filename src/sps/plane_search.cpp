@@ -397,9 +397,9 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     if (target.scale.size() > 0) {
       x_plus = hold_->project(estimate_target(data_, target, x_plus));
     } else if (mean_centre) {
-      const Eigen::MatrixXd projector = tangent_projector(hold_->normals(x_plus), options_.dims);
+      const TangentSpace tangent(hold_->normals(x_plus), options_.dims);
       x_plus = hold_->project(
-          maximize_posterior_mean_on_tangent(*model_, x_plus, projector, 4, options_.threads));
+          maximize_posterior_mean_on_tangent(*model_, x_plus, tangent, 4, options_.threads));
     }
   } else if (target.scale.size() > 0) {
     x_plus = estimate_target(data_, target, x_plus);
@@ -411,29 +411,15 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     return;
   }
   const double best_mean = model_->mean(x_plus);
-  if (hold_) {
-    const Eigen::MatrixXd projector = tangent_projector(hold_->normals(x_plus), options_.dims);
-    if (options_.method == Method::kSls) {
-      plane_ = sls_line(
-          x_plus, maximize_expected_improvement_on_tangent(
-                      *model_, best_mean, x_plus, projector, rng_,
-                      options_.ei_restarts > 0 ? options_.ei_restarts : 6, 0, options_.threads));
-      return;
-    }
-    HeldPlaneSettings hs;
-    hs.ei_starts = options_.ei_restarts > 0 ? options_.ei_restarts : 6;
-    hs.plane_restarts = options_.plane_restarts;
-    hs.threads = options_.threads;
-    hs.perceptual_scale = options_.perceptual_scale;
-    hs.min_plane_length = options_.min_plane_length;
-    hs.keep_centre = set_directly;
-    plane_ = held_sps_plane(*model_, x_plus, projector, best_mean, rng_, hs);
-    return;
-  }
+  // One construction for both: a free search is a held one whose tangent space is the whole
+  // space.
+  const TangentSpace space =
+      hold_ ? TangentSpace(hold_->normals(x_plus), options_.dims) : TangentSpace();
   EiSearchSettings ei;
   ei.starts = options_.ei_restarts;
   ei.threads = options_.threads;
-  const Eigen::VectorXd x_ei = maximize_expected_improvement(*model_, best_mean, x_plus, rng_, ei);
+  const Eigen::VectorXd x_ei =
+      maximize_expected_improvement(*model_, best_mean, x_plus, rng_, ei, space);
   if (options_.method == Method::kSls) {
     plane_ = sls_line(x_plus, x_ei);
     return;
@@ -444,7 +430,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   ps.perceptual_scale = options_.perceptual_scale;
   ps.min_plane_length = options_.min_plane_length;
   ps.keep_centre = set_directly;
-  plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps);
+  plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps, space);
 }
 
 double PlaneSearch::posterior_mean(const Eigen::VectorXd& x) const {

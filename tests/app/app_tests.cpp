@@ -643,38 +643,22 @@ TEST_CASE("a plane that ended early is saved, loaded back and undone like any ot
 namespace {
 
 // A hold on a linear quantity: the sum of the first two coordinates stays `value`. Its
-// tangent directions have d0 + d1 = 0; the
-// projection is the nearest point on the line, clamped into the box.
+// tangent directions have d0 + d1 = 0; the projection is the nearest point on the line,
+// clamped into the box.
 class SumHold : public app::ConstraintProjector {
  public:
   explicit SumHold(double value) : value_(value) {}
-  class Plane : public app::HeldPlane {
-   public:
-    Plane(double value, const sps::Plane& original) : value_(value) {
-      plane = original;
-      plane.c = project(original.c);
-      const auto tangent = [](Eigen::VectorXd d) {
-        if (d.size() < 2) return d;
-        const double m = 0.5 * (d[0] + d[1]);
-        d[0] -= m, d[1] -= m;
-        return d;
-      };
-      plane.u = tangent(original.u);
-      plane.v = tangent(original.v);
-    }
-    Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
-      Eigen::VectorXd y = x;
-      const double m = 0.5 * (value_ - x[0] - x[1]);
-      y[0] = std::clamp(x[0] + m, std::max(0.0, value_ - 1.0), std::min(1.0, value_));
-      y[1] = value_ - y[0];
-      return y;
-    }
-
-   private:
-    double value_;
-  };
-  std::shared_ptr<const app::HeldPlane> hold(const sps::Plane& plane) const override {
-    return std::make_shared<Plane>(value_, plane);
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override {
+    Eigen::VectorXd y = x;
+    const double m = 0.5 * (value_ - x[0] - x[1]);
+    y[0] = std::clamp(x[0] + m, std::max(0.0, value_ - 1.0), std::min(1.0, value_));
+    y[1] = value_ - y[0];
+    return y;
+  }
+  Eigen::MatrixXd normals(const Eigen::VectorXd& x) const override {
+    Eigen::MatrixXd n = Eigen::MatrixXd::Zero(1, x.size());
+    n(0, 0) = n(0, 1) = 1.0;
+    return n;
   }
   std::string description() const override { return "x1 + x2"; }
   std::vector<app::HeldValue> held_values() const override { return {{"sum", value_}}; }

@@ -1,5 +1,6 @@
 // The search on a held surface (sps/held_search.hpp): planes built on the surface, in its
-// tangent space, inside the box; without a hold nothing changes.
+// tangent space, inside the box; without a hold nothing changes, and a hold that holds nothing
+// builds the free search's planes (one construction for both).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -7,8 +8,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "sps/expected_improvement.hpp"
 #include "sps/held_search.hpp"
+#include "sps/plane_construction.hpp"
 #include "sps/plane_search.hpp"
+#include "test_support.hpp"
 #include "testing/simulated_user.hpp"
 #include "testing/test_functions.hpp"
 
@@ -57,6 +61,22 @@ Eigen::VectorXd perceptual_scale(int d) {
 
 bool inside(const Eigen::VectorXd& x) {
   return x.minCoeff() >= -1e-9 && x.maxCoeff() <= 1.0 + 1e-9;
+}
+
+// A hold on a quantity that does not change anywhere: its normal is zero, so the tangent
+// space is the whole space, but as a projector (the matrix products of a held search) rather
+// than as the free search's whole space.
+class NothingHeld : public sps::SearchHold {
+ public:
+  Eigen::VectorXd project(const Eigen::VectorXd& x) const override { return x; }
+  Eigen::MatrixXd normals(const Eigen::VectorXd& x) const override {
+    return Eigen::MatrixXd::Zero(1, x.size());
+  }
+};
+
+double largest_difference(const sps::Plane& a, const sps::Plane& b) {
+  return std::max({(a.c - b.c).cwiseAbs().maxCoeff(), (a.u - b.u).cwiseAbs().maxCoeff(),
+                   (a.v - b.v).cwiseAbs().maxCoeff(), std::abs(a.u_neg_scale - b.u_neg_scale)});
 }
 
 }  // namespace
@@ -143,6 +163,12 @@ TEST_CASE("a held search builds every plane on the surface, in its tangent space
     CHECK(inside(p.c - p.v));
     CHECK(p.u.norm() > 1e-3);
     CHECK(p.v.norm() > 1e-3);
+    if (i > 0) {
+      // Shaped for a person: v orthogonal to u in the perceptual metric.
+      const Eigen::VectorXd s = perceptual_scale(d);
+      CHECK(std::abs(p.u.cwiseProduct(s).dot(p.v.cwiseProduct(s))) <
+            1e-9 * p.u.cwiseProduct(s).norm() * p.v.cwiseProduct(s).norm());
+    }
     // The user picks on the plane as shown: every point on the surface.
     const auto answer = sps::zoom_user(*f, p);
     search.submit(hold->project(answer.chosen));
@@ -177,4 +203,117 @@ TEST_CASE("without a hold the search is unchanged by the hold code", "[held][sea
     a.submit(answer.chosen, answer.comparisons);
     b.submit(answer.chosen, answer.comparisons);
   }
+}
+
+TEST_CASE("tangent space: the whole space is exact, a held one keeps its quantities", "[held]") {
+  const int d = 5;
+  std::mt19937_64 rng(4);
+  const Eigen::VectorXd x = sps_test::random_point(d, rng, -1.0, 1.0);
+  const sps::TangentSpace whole;
+  CHECK(whole.whole());
+  CHECK((whole.project(x) - x).cwiseAbs().maxCoeff() == 0.0);
+  Eigen::VectorXd keep = Eigen::VectorXd::Ones(d);
+  keep[1] = 0.0;
+  const Eigen::VectorXd masked = whole.without_coordinates(keep).project(x);
+  CHECK(masked[1] == 0.0);
+  CHECK((masked - x).cwiseAbs().sum() == Approx(std::abs(x[1])).margin(1e-15));
+
+  const sps::TangentSpace held(weights(d).transpose(), d);
+  REQUIRE_FALSE(held.whole());
+  CHECK(std::abs(weights(d).dot(held.project(x))) < 1e-12);
+  const Eigen::VectorXd origin = Eigen::VectorXd::Constant(d, 0.4);
+  CHECK(std::abs(weights(d).dot(held.through(origin, x) - origin)) < 1e-12);
+  // Without coordinate 1: still tangent, coordinate 1 unchanged, and the largest such part of x
+  // (what is left is orthogonal to every allowed direction).
+  const sps::TangentSpace narrower = held.without_coordinates(keep);
+  const Eigen::VectorXd p = narrower.project(x);
+  CHECK(std::abs(weights(d).dot(p)) < 1e-12);
+  CHECK(std::abs(p[1]) < 1e-12);
+  CHECK((narrower.project(p) - p).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(p.norm() > 0.1);
+  // Nothing held as a projector: the identity, as the whole space.
+  const sps::TangentSpace nothing(Eigen::MatrixXd::Zero(1, d), d);
+  REQUIRE_FALSE(nothing.whole());
+  CHECK((nothing.project(x) - x).cwiseAbs().maxCoeff() < 1e-15);
+}
+
+TEST_CASE("one plane construction: holding nothing builds the free plane", "[held][plane]") {
+  // The held path (EI on the tangent plane, u its tangent part, v among tangent directions)
+  // with a tangent space that is everything must give the free plane: if the two ever became
+  // separate constructions again they would differ here. (Shaped for a person, a tangent
+  // space keeps every coordinate of v, so there the two differ by design.)
+  for (const int d : {3, 6}) {
+    INFO("d " << d);
+    std::mt19937_64 data_rng(30 + static_cast<unsigned>(d));
+    const sps::PreferenceData data = sps_test::random_data(d, 6, data_rng);
+    const sps::ModelSettings model_settings;
+    const auto model =
+        sps::PreferenceModel::fit(data, model_settings, sps::PreferenceModel(d, model_settings));
+    const Eigen::VectorXd x_plus = model.points().col(model.best_observed_index());
+    const double best_mean = model.mean(x_plus);
+    const sps::TangentSpace nothing(Eigen::MatrixXd::Zero(1, d), d);
+    REQUIRE_FALSE(nothing.whole());
+    std::mt19937_64 free_rng(8);
+    std::mt19937_64 held_rng(8);
+    const Eigen::VectorXd free_ei =
+        sps::maximize_expected_improvement(model, best_mean, x_plus, free_rng, {});
+    const Eigen::VectorXd held_ei =
+        sps::maximize_expected_improvement(model, best_mean, x_plus, held_rng, {}, nothing);
+    CHECK((free_ei - held_ei).cwiseAbs().maxCoeff() < 1e-9);
+    const sps::Plane free = sps::sps_plane(model, x_plus, free_ei, best_mean, free_rng, {});
+    const sps::Plane held =
+        sps::sps_plane(model, x_plus, held_ei, best_mean, held_rng, {}, nothing);
+    REQUIRE(free.u.norm() > 1e-3);
+    REQUIRE(free.v.norm() > 1e-3);
+    CHECK(largest_difference(free, held) < 1e-9);
+  }
+}
+
+TEST_CASE("a search holding nothing makes the free search's planes", "[held][search]") {
+  for (const auto method : {sps::Method::kSps, sps::Method::kSls}) {
+    INFO(sps::method_name(method));
+    const int d = 5;
+    sps::SearchOptions o;
+    o.dims = d;
+    o.seed = 9;
+    o.method = method;
+    sps::PlaneSearch free(o);
+    sps::PlaneSearch held(o);
+    held.set_hold(std::make_shared<const NothingHeld>());  // the first plane stays as it was
+    const auto f = sps::make_test_function("gaussian", d);
+    for (int i = 0; i < 5; ++i) {
+      INFO("plane " << i);
+      REQUIRE(largest_difference(free.current_plane(), held.current_plane()) < 1e-9);
+      const auto answer = sps::zoom_user(*f, free.current_plane());
+      free.submit(answer.chosen, answer.comparisons);
+      held.submit(answer.chosen, answer.comparisons);
+    }
+    CHECK(largest_difference(free.current_plane(), held.current_plane()) < 1e-9);
+  }
+}
+
+TEST_CASE("a plane moved onto a hold: centre on it, directions tangent, lengths kept", "[held]") {
+  const int d = 6;
+  const LinearHold hold(weights(d), 0.5);
+  sps::Plane plane;
+  plane.c = Eigen::VectorXd::Constant(d, 0.45);
+  plane.u = Eigen::VectorXd::Zero(d);
+  plane.u[0] = 0.2;
+  plane.u[2] = 0.1;
+  plane.v = Eigen::VectorXd::Zero(d);
+  plane.v[1] = 0.15;
+  plane.v[0] = 0.05;
+  const sps::HeldPlane held = sps::hold_plane(hold, plane);
+  CHECK(hold.value(held.plane.c) == Approx(0.5).margin(1e-9));
+  CHECK(std::abs(weights(d).dot(held.plane.u)) < 1e-9);
+  CHECK(std::abs(weights(d).dot(held.plane.v)) < 1e-9);
+  CHECK(held.plane.u.norm() == Approx(plane.u.norm()).epsilon(1e-12));
+  CHECK(held.plane.v.norm() == Approx(plane.v.norm()).epsilon(1e-12));
+  CHECK(std::abs(held.plane.u.dot(held.plane.v)) < 1e-12);
+  CHECK(inside(held.plane.c - held.plane.u_neg_scale * held.plane.u));
+  REQUIRE(held.normals.rows() == 1);
+  CHECK((held.normals.row(0).transpose() - weights(d)).cwiseAbs().maxCoeff() < 1e-12);
+  // A cell of the plane projected with the centre's normals lands on the surface.
+  const Eigen::VectorXd cell = hold.project_near(held.plane.point(0.5, -0.5), held.normals);
+  CHECK(hold.value(cell) == Approx(0.5).margin(1e-9));
 }
