@@ -297,7 +297,7 @@ void GalleryController::click(const intent::ClickCell& c) {
     say(MessageKind::kInfo, "zoomed in around your choice: pick the best again");
   }
   if (r == ClickResult::kPlaneFinished) {
-    // A plane that ends before its last zoom level says why in plain words (issue 9).
+    // A plane that ends before its last zoom level says why in plain words.
     const std::string note = session_->plane_note();
     // Kept for the message that announces the next plane, which would otherwise replace it
     // within a second.

@@ -702,7 +702,7 @@ Session Session::from_json(const std::string& text) {
     if (static_cast<int>(session.history_.size()) != session.search_.iteration()) {
       throw std::runtime_error("history length differs from the number of submissions");
     }
-    // Holds (optional: files from before issue 13 have none). Only their form is checked here;
+    // Holds (optional: files from before holds existed have none). Only their form is checked here;
     // the design space checks names and values when the window holds them again.
     if (j.contains("holds")) {
       const json& holds = j.at("holds");

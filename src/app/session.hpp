@@ -140,7 +140,7 @@ class Session {
   // (sps::SearchOptions::min_plane_length), from the next plane on (saved with the search).
   void set_min_plane_length(double length) { search_.set_min_plane_length(length); }
 
-  // Holds (issue 13; app/constraint_projector.hpp): with a projector every plane shown is the
+  // Holds (app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected
   // onto the holds. nullptr releases them; the preference data stay. The projector's
   // held_values() are saved with the session; a session read from a file has them in

@@ -1,4 +1,4 @@
-// Holds on a body's measurements (issue 13) as the session's constraint projector
+// Holds on a body's measurements as the session's constraint projector
 // (app/constraint_projector.hpp): the surface where the held measurements keep their values,
 // points solved onto it and its normals the measurements' Jacobian; every cell of a plane is
 // projected by Gauss-Newton steps that reuse the Jacobian at the plane's centre
