@@ -14,6 +14,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Long enough for the frame after a click to be drawn (25-60 ms on a software renderer), short
+// enough that a crash right after a click still finds it saved almost always.
+constexpr std::chrono::milliseconds kAutosaveDelay(120);
+
 template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
@@ -145,7 +149,9 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
     }
   }
   if (autosave_enabled_ && options_.background_autosave) {
-    writer_ = std::make_unique<SessionWriter>(session_file_stamp_);
+    // The copy waits a few frames, so the frame that answers the click does not share the CPU
+    // with writing it (a long session's save is tens of ms); clicks in that time replace it.
+    writer_ = std::make_unique<SessionWriter>(session_file_stamp_, kAutosaveDelay);
   }
   // Command-line targets, then holds: applied at the first frame that may (after the resume
   // question; a target's point goes through the optimizer before the holds are built).

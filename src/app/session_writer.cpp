@@ -8,8 +8,8 @@
 
 namespace app {
 
-SessionWriter::SessionWriter(FileStamp expected)
-    : expected_(expected), thread_([this] { run(); }) {}
+SessionWriter::SessionWriter(FileStamp expected, std::chrono::milliseconds start_delay)
+    : start_delay_(start_delay), expected_(expected), thread_([this] { run(); }) {}
 
 SessionWriter::~SessionWriter() {
   {
@@ -31,7 +31,10 @@ void SessionWriter::save(Session session, std::filesystem::path path) {
 
 void SessionWriter::flush() {
   std::unique_lock<std::mutex> lock(mutex_);
+  ++flushing_;
+  wake_.notify_all();
   idle_.wait(lock, [this] { return !queued_ && !writing_; });
+  --flushing_;
 }
 
 void SessionWriter::expect(FileStamp stamp) {
@@ -58,6 +61,10 @@ void SessionWriter::run() {
     if (!queued_) {
       if (stopping_) return;
       continue;
+    }
+    if (start_delay_.count() > 0 && !stopping_ && flushing_ == 0) {
+      wake_.wait_for(lock, start_delay_, [this] { return stopping_ || flushing_ > 0; });
+      if (!queued_) continue;
     }
     auto job = std::move(*queued_);
     queued_.reset();

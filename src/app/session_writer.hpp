@@ -5,6 +5,7 @@
 // file another window replaced is never written over.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <filesystem>
 #include <mutex>
@@ -19,7 +20,10 @@ namespace app {
 class SessionWriter {
  public:
   // `expected`: the file as the caller last read it (its stamp), for the first save's check.
-  explicit SessionWriter(FileStamp expected);
+  // `start_delay`: how long a queued copy waits before it is written (a newer copy queued
+  // meanwhile replaces it; flush() and the destructor do not wait).
+  explicit SessionWriter(FileStamp expected,
+                         std::chrono::milliseconds start_delay = std::chrono::milliseconds(0));
   ~SessionWriter();  // writes what is queued, then stops
   SessionWriter(const SessionWriter&) = delete;
   SessionWriter& operator=(const SessionWriter&) = delete;
@@ -43,6 +47,8 @@ class SessionWriter {
   std::optional<std::pair<Session, std::filesystem::path>> queued_;
   bool writing_ = false;
   bool stopping_ = false;
+  int flushing_ = 0;  // flush() calls waiting: no start delay
+  std::chrono::milliseconds start_delay_;
   bool halted_ = false;  // a conflict: the file is someone else's now
   FileStamp expected_;
   std::optional<GuardedSave> done_;

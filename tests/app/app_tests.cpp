@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include "app/session.hpp"
 #include "app/session_store.hpp"
+#include "app/session_writer.hpp"
 #include "app/space_catalogue.hpp"
 
 #include "app/worker.hpp"
@@ -931,4 +932,33 @@ TEST_CASE(
   CHECK(result.redo_problem.find(file.string()) != std::string::npos);
   CHECK(result.redo_problem.find("redo[0]: search") != std::string::npos);
   CHECK(fs::exists(file));
+}
+
+TEST_CASE(
+    "the session writer waits its start delay, writes only the newest copy, flush does not wait",
+    "[app][background-save]") {
+  TempDir dir;
+  const fs::path path = dir.path / "s.json";
+  app::Session first(small_settings());
+  first.click({0, 0});
+  app::Session second = first;
+  second.click({1, 1});
+  {
+    // A delay far longer than this test: only flush() or closing makes it write now.
+    app::SessionWriter writer(app::stamp_of(path), std::chrono::milliseconds(600000));
+    writer.save(first, path);
+    writer.save(second, path);  // replaces the first before it was started
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    CHECK_FALSE(fs::exists(path));  // still waiting
+    CHECK_FALSE(writer.poll());
+    writer.flush();
+    REQUIRE(fs::exists(path));
+    CHECK(app::read_session_file(path).clicks_on_plane() == 2);
+    const auto result = writer.poll();
+    REQUIRE(result);
+    CHECK_FALSE(result->conflict);
+    second.click({2, 2});
+    writer.save(second, path);
+  }  // closing writes what is queued, without the delay
+  CHECK(app::read_session_file(path).clicks_on_plane() == 3);
 }
