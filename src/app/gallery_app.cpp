@@ -17,7 +17,6 @@
 #include "app/gallery_layout.hpp"
 #include "app/gallery_view.hpp"
 #include "app/ui_prefs.hpp"
-#include "app/window_benchmark.hpp"
 #include "render/png_writer.hpp"
 
 namespace app {
@@ -41,23 +40,18 @@ SpaceOpener space_opener(const SpaceCatalogue& catalogue) {
   return [&catalogue](const SpaceSettings& s) { return catalogue.open(s); };
 }
 
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = p * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<size_t>(std::floor(pos));
-  const auto hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
 class GalleryWindow {
  public:
   explicit GalleryWindow(const GalleryOptions& options)
-      : options_(options), bench_(options.benchmark_orbit_frames) {}
+      : options_(options), observer_(options.observer.get()) {}
   ~GalleryWindow() { shutdown(); }
   int run();
 
@@ -72,8 +66,7 @@ class GalleryWindow {
   void shutdown();
   void handle_keys();
   void write_screenshot(const fs::path& path);
-  void benchmark_step();
-  void benchmark_report();
+  WindowFacts facts() const;
   double now() const { return seconds_since(start_); }
   UiPrefs current_prefs() const {
     UiPrefs prefs = view_->prefs();
@@ -99,14 +92,7 @@ class GalleryWindow {
 
   long frame_ = 0;
   bool first_grid_shown_ = false;
-  double launch_to_first_grid_ = 0.0;
-  std::vector<double> animation_frame_ms_;
-  std::vector<double> body_ms_;     // cell preparation + upload per animation frame
-  std::vector<double> cells_ms_;    // UI build + cell rendering (GL finished) per frame
-  std::vector<double> present_ms_;  // ImGui drawing of the window + swap
-  std::vector<double> swap_ms_;     // of which the swap
-  int benchmark_clicks_done_ = 0;
-  WindowBenchmark bench_;
+  FrameObserver* observer_;  // options_.observer's, or none
   bool quit_ = false;
 };
 
@@ -136,7 +122,7 @@ bool GalleryWindow::create_window(int width, int height, bool fit_to_screen) {
     return false;
   }
   glfwMakeContextCurrent(window_);
-  glfwSwapInterval(options_.benchmark_clicks > 0 ? 0 : 1);
+  glfwSwapInterval(observer_ != nullptr ? 0 : 1);
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, &GalleryWindow::on_drop);
   glfwSetKeyCallback(window_, &GalleryWindow::on_key);  // before ImGui, which chains to it
@@ -247,57 +233,20 @@ void GalleryWindow::write_screenshot(const fs::path& path) {
   }
 }
 
-void GalleryWindow::benchmark_report() {
-  const double median = percentile(animation_frame_ms_, 0.5);
-  const double p95 = percentile(animation_frame_ms_, 0.95);
-  const double worst = animation_frame_ms_.empty() ? 0.0
-                                                   : *std::max_element(animation_frame_ms_.begin(),
-                                                                       animation_frame_ms_.end());
+WindowFacts GalleryWindow::facts() const {
+  WindowFacts f;
   const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const auto& s = controller_->session().settings();
-  std::printf("renderer: %s\n", gl_renderer != nullptr ? gl_renderer : "?");
-  std::printf("space: %s\n", controller_->space().description().c_str());
-  int fb_w = 0, fb_h = 0;
-  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
-  std::printf(
-      "grid: %dx%d cells of %dx%d px, MSAA %d samples at rest; while animating %s at %.2f "
-      "resolution; window %dx%d\n",
-      s.grid_size, s.grid_size, view_->cell_pixels(), view_->cell_pixels(), options_.samples,
-      options_.animation_samples > 0 ? "MSAA" : "no MSAA",
-      static_cast<double>(options_.animation_scale), fb_w, fb_h);
-  std::printf("launch to first grid: %.0f ms\n", launch_to_first_grid_ * 1000.0);
-  std::printf("zoom animation frames: %zu over %d clicks\n", animation_frame_ms_.size(),
-              benchmark_clicks_done_);
-  std::printf("frame time median: %.1f ms  p95: %.1f ms  max: %.1f ms\n", median, p95, worst);
-  if (options_.benchmark_breakdown) {
-    std::printf(
-        "  medians: cell preparation + upload %.1f ms, UI + cells rendered %.1f ms, "
-        "window drawn + swapped %.1f ms (swap %.1f ms)\n",
-        percentile(body_ms_, 0.5), percentile(cells_ms_, 0.5), percentile(present_ms_, 0.5),
-        percentile(swap_ms_, 0.5));
-  } else {
-    std::printf("  (--breakdown times the phases of a frame; it adds glFinish calls)\n");
-  }
-  std::printf("last optimizer submit: %.2f s (worker thread)\n",
-              controller_->last_submit_seconds());
-  std::printf("session: %d finished planes at the end\n", controller_->session().planes_done());
-  bench_.report();
-}
-
-void GalleryWindow::benchmark_step() {
-  if (options_.benchmark_clicks <= 0 || !first_grid_shown_) return;
-  if (controller_->animating() || controller_->busy() || !bench_.orbit_done()) return;
-  if (benchmark_clicks_done_ >= options_.benchmark_clicks) {
-    benchmark_report();
-    quit_ = true;
-    return;
-  }
-  const int n = controller_->session().settings().grid_size;
-  static const int pattern[][2] = {{0, 0}, {2, 1}, {1, 2}, {2, 2}, {0, 1}, {1, 0}, {2, 0}, {0, 2}};
-  const auto& p = pattern[benchmark_clicks_done_ % 8];
-  controller_->queue(intent::ClickCell{std::min(p[0], n - 1), std::min(p[1], n - 1)});
-  bench_.click_queued(Clock::now());
-  ++benchmark_clicks_done_;
+  f.renderer = gl_renderer != nullptr ? gl_renderer : "?";
+  f.space = controller_->space().description();
+  f.grid_size = controller_->session().settings().grid_size;
+  f.cell_pixels = view_->cell_pixels();
+  f.samples = options_.samples;
+  f.animation_multisample = options_.animation_samples > 0;
+  f.animation_scale = options_.animation_scale;
+  glfwGetFramebufferSize(window_, &f.framebuffer_w, &f.framebuffer_h);
+  f.last_submit_seconds = controller_->last_submit_seconds();
+  f.planes_done = controller_->session().planes_done();
+  return f;
 }
 
 int GalleryWindow::run() {
@@ -309,10 +258,9 @@ int GalleryWindow::run() {
   }
   try {
     // A benchmark measures the model it was given (or the default), whatever was chosen before.
-    controller_ = std::make_unique<GalleryController>(options_.benchmark_clicks > 0
-                                                          ? controller_options(options_)
-                                                          : controller_options(options_, prefs),
-                                                      space_opener(*options_.catalogue), now());
+    controller_ = std::make_unique<GalleryController>(
+        observer_ != nullptr ? controller_options(options_) : controller_options(options_, prefs),
+        space_opener(*options_.catalogue), now());
   } catch (const std::exception& e) {
     std::cerr << "sequential-gallery: " << e.what() << "\n";
     return 1;
@@ -339,36 +287,40 @@ int GalleryWindow::run() {
   vo.report_layout = options_.report_layout;
   vo.file_dialog = options_.file_dialog;
   view_ = std::make_unique<GalleryView>(vo, prefs, *options_.catalogue);
-  if (!prefs_path_.empty() && options_.benchmark_clicks == 0) {
+  if (!prefs_path_.empty() && observer_ == nullptr) {
     prefs_saver_.emplace(prefs_path_, load_ui_prefs(prefs_path_));
   }
 
-  Clock::time_point last_frame_start = Clock::now();
   bool previous_frame_zoomed = false;
+  const bool breakdown = observer_ != nullptr && observer_->wants_breakdown();
   while (!glfwWindowShouldClose(window_) && !quit_) {
     const bool active = controller_->animating() || controller_->busy() || !first_grid_shown_ ||
-                        options_.benchmark_clicks > 0 || options_.screenshot_after_frames >= 0 ||
+                        observer_ != nullptr || options_.screenshot_after_frames >= 0 ||
                         ImGui::IsAnyMouseDown() || view_->waiting_for_dialog();
     if (active) {
       glfwPollEvents();
     } else {
       glfwWaitEventsTimeout(0.25);
     }
-    const auto frame_start = Clock::now();
-    if (previous_frame_zoomed && options_.benchmark_clicks > 0) {
-      animation_frame_ms_.push_back(
-          std::chrono::duration<double, std::milli>(frame_start - last_frame_start).count());
+    FrameObserver::Request request;
+    if (observer_ != nullptr) {
+      request =
+          observer_->frame_started({Clock::now(), !controller_->animating() && !controller_->busy(),
+                                    first_grid_shown_, previous_frame_zoomed});
+      if (request.quit) {
+        observer_->report(facts());
+        break;
+      }
+      if (request.click) {
+        const int n = controller_->session().settings().grid_size;
+        controller_->queue(intent::ClickCell{std::min(request.click->first, n - 1),
+                                             std::min(request.click->second, n - 1)});
+      }
     }
-    last_frame_start = frame_start;
-    const bool orbit =
-        options_.benchmark_clicks > 0 &&
-        bench_.frame_started(frame_start, !controller_->animating() && !controller_->busy());
-
     if (!pending_drop_.empty()) {
       view_->open_dropped(*controller_, pending_drop_);
       pending_drop_.clear();
     }
-    benchmark_step();
     // 1. State changes, all of them, before anything of this frame is drawn.
     controller_->begin_frame(now());
     previous_frame_zoomed = controller_->zooming();
@@ -380,7 +332,7 @@ int GalleryWindow::run() {
     const auto t0 = Clock::now();
     view_->update_cells(*controller_, static_cast<float>(win_w), static_cast<float>(win_h), dpi);
     const auto t1 = Clock::now();
-    if (orbit) view_->orbit(4.0f, 0.0f);
+    if (request.orbit) view_->orbit(4.0f, 0.0f);
     view_->draw_cells(*controller_);
     // 3. The UI: reads state, queues intents for the next frame.
     ImGui_ImplOpenGL3_NewFrame();
@@ -388,12 +340,10 @@ int GalleryWindow::run() {
     ImGui::NewFrame();
     handle_keys();
     view_->build(*controller_, frame_);
-    if (options_.benchmark_breakdown) glFinish();  // attribute GL time to the cells
+    if (breakdown) glFinish();  // attribute GL time to the cells
     const auto t2 = Clock::now();
-    if (previous_frame_zoomed && options_.benchmark_breakdown) {
-      body_ms_.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      cells_ms_.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
-    }
+    if (previous_frame_zoomed && breakdown)
+      observer_->phases(ms_between(t0, t1), ms_between(t1, t2));
     ImGui::Render();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, fb_w, fb_h);
@@ -401,16 +351,15 @@ int GalleryWindow::run() {
     glClearColor(bg.x, bg.y, bg.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (options_.benchmark_breakdown) glFinish();
+    if (breakdown) glFinish();
     const auto t3 = Clock::now();
     ++frame_;
     if (!first_grid_shown_ && !controller_->displayed_cells().empty()) {
       first_grid_shown_ = true;
       glFinish();
-      launch_to_first_grid_ = seconds_since(options_.launch_time);
-      bench_.first_grid();
-      std::cerr << "first grid shown " << static_cast<int>(launch_to_first_grid_ * 1000.0)
-                << " ms after launch\n";
+      const double launch = seconds_since(options_.launch_time);
+      if (observer_ != nullptr) observer_->first_grid(launch);
+      std::cerr << "first grid shown " << static_cast<int>(launch * 1000.0) << " ms after launch\n";
     }
     if (screenshot_requested_) {
       screenshot_requested_ = false;
@@ -422,15 +371,14 @@ int GalleryWindow::run() {
       if (options_.quit_after_screenshot) quit_ = true;
     }
     glfwSwapBuffers(window_);
-    if (bench_.click_pending()) {
+    if (observer_ != nullptr && observer_->waits_for_presented()) {
       glFinish();  // the click's frame is on screen
-      bench_.frame_presented(Clock::now());
+      observer_->frame_presented(Clock::now());
     }
     if (prefs_saver_) prefs_saver_->update(current_prefs(), now());
-    if (previous_frame_zoomed && options_.benchmark_breakdown) {
+    if (previous_frame_zoomed && breakdown) {
       glFinish();
-      present_ms_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t2).count());
-      swap_ms_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t3).count());
+      observer_->presented_phases(ms_between(t2, Clock::now()), ms_between(t3, Clock::now()));
     }
   }
   controller_->save_now();

@@ -7,9 +7,11 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "app/frame_observer.hpp"
 #include "app/gallery_controller.hpp"
 #include "app/space_catalogue.hpp"
 #include "app/ui_prefs.hpp"
@@ -51,11 +53,10 @@ struct GalleryOptions {
   bool report_layout = false;  // print the grid cells' window rectangles (scripted tests)
   int optimizer_delay_ms = 0;  // testing: hold each submission back this long
 
-  // Benchmark: click automatically through `benchmark_clicks` cells, measure frame times
-  // during the zoom animations and the launch-to-first-grid time, print them and exit.
-  int benchmark_clicks = 0;
-  bool benchmark_breakdown = false;  // also time the phases of each frame (adds glFinish)
-  int benchmark_orbit_frames = 0;    // before the clicks: frames with the camera turning
+  // A watcher of the frames (bench-gui, gallery --benchmark-clicks: src/bench): it may click
+  // and orbit, and the window closes when it says so. With one, the window measures the model
+  // it was given, remembers nothing and draws without waiting for events or the display.
+  std::shared_ptr<FrameObserver> observer;
   std::chrono::steady_clock::time_point launch_time = std::chrono::steady_clock::now();
 };
 

@@ -9,7 +9,8 @@
 
 #include "app/gallery_app.hpp"
 #include "app/gallery_layout.hpp"
-#include "app/long_session.hpp"
+#include "bench/long_session.hpp"
+#include "bench/window_timing.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
@@ -83,11 +84,13 @@ int run(int argc, char** argv) {
   app::GalleryOptions o;
   o.launch_time = launch;
   cli::read_gallery_display_options(args, 400, o);
-  o.benchmark_clicks = args.get_int("clicks", 12);
-  o.benchmark_breakdown = args.has("breakdown");
-  if (o.benchmark_clicks < 1) throw cli::ArgError("--clicks must be at least 1");
-  o.benchmark_orbit_frames = args.get_int("orbit-frames", 90);
-  if (o.benchmark_orbit_frames < 0) throw cli::ArgError("--orbit-frames must be at least 0");
+  bench::WindowTimingOptions timing;
+  timing.clicks = args.get_int("clicks", 12);
+  timing.breakdown = args.has("breakdown");
+  if (timing.clicks < 1) throw cli::ArgError("--clicks must be at least 1");
+  timing.orbit_frames = args.get_int("orbit-frames", 90);
+  if (timing.orbit_frames < 0) throw cli::ArgError("--orbit-frames must be at least 0");
+  o.observer = std::make_shared<bench::WindowTiming>(timing);
   const int planes_done = args.get_int("planes-done", 0);
   if (planes_done < 0) throw cli::ArgError("--planes-done must be at least 0");
   if (planes_done > 0 && args.has("session")) {
@@ -99,8 +102,8 @@ int run(int argc, char** argv) {
   if (planes_done > 0) {
     const fs::path file = args.has("write-session") ? fs::path(args.require("write-session"))
                                                     : temporary_session("long");
-    const int made =
-        app::write_long_session(app::controller_options(o), &spaces::open_space, planes_done, file);
+    const int made = bench::write_long_session(app::controller_options(o), &spaces::open_space,
+                                               planes_done, file);
     std::cout << "session: " << made << " finished planes made in-process, " << fs::file_size(file)
               << " bytes" << std::endl;
     if (args.has("write-session")) return 0;

@@ -5,6 +5,7 @@
 
 #include "app/gallery_app.hpp"
 #include "app/session_store.hpp"
+#include "bench/window_timing.hpp"
 #include "body/measurement_solve.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
@@ -142,10 +143,14 @@ int run(int argc, char** argv) {
   o.screenshot_path = args.get_or("screenshot", "");
   o.screenshot_after_frames = args.get_int("screenshot-after-frames", -1);
   o.quit_after_screenshot = args.has("quit-after-screenshot");
-  o.benchmark_clicks = args.get_int("benchmark-clicks", 0);
+  if (const int clicks = args.get_int("benchmark-clicks", 0); clicks > 0) {
+    bench::WindowTimingOptions timing;
+    timing.clicks = clicks;
+    o.observer = std::make_shared<bench::WindowTiming>(timing);
+  }
   o.report_layout = args.has("report-layout");
   o.optimizer_delay_ms = std::max(0, args.get_int("optimizer-delay-ms", 0));
-  if (o.benchmark_clicks > 0 && !args.has("resume")) o.resume = app::ResumePolicy::kNo;
+  if (o.observer && !args.has("resume")) o.resume = app::ResumePolicy::kNo;
   return app::run_gallery(o);
 }
 

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "app/cell_visibility.hpp"
-#include "app/search_benchmark.hpp"
 #include "app/session.hpp"
+#include "bench/simulated_person.hpp"
 #include "body/measurements.hpp"
 #include "body/model_loader.hpp"
 #include "body/shape_distance.hpp"
@@ -234,13 +234,13 @@ int run_body_simulation(const ArgParser& args) {
     const auto trial_seed = static_cast<std::uint64_t>(seed + trial);
     const Eigen::VectorXf target =
         fixed_target.size() > 0 ? fixed_target : random_target(k, trial_seed);
-    const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+    const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
       return distance.rms_to_betas_mm(xs, target);
     };
     // The pixel person sees how far a cell is from the body in mind as the window measures
     // look-alikes: its largest visible shift (2 px of a 210 px cell is 20 mm of the body's
     // outline, however little of the body moves). The mm person judges by the RMS distance.
-    const app::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {
+    const bench::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {
       return distance.max_to_betas_mm(xs, target);
     };
     app::SessionSettings settings;
@@ -264,7 +264,7 @@ int run_body_simulation(const ArgParser& args) {
     }
     if (adapt) session.set_perceptual_distance(pairwise, policy);
     play_trial(session, to_target, pairwise, jnd_mm, clone_mm, trial_seed, results,
-               pixel_person ? seen : app::TargetDistance{});
+               pixel_person ? seen : bench::TargetDistance{});
     if (!quiet) std::cerr << "\rtrial " << (trial + 1) << "/" << trials << std::flush;
   }
   if (!quiet) std::cerr << "\n";

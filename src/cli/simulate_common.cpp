@@ -77,21 +77,21 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
   return options;
 }
 
-void play_trial(app::Session& session, const app::TargetDistance& to_target,
+void play_trial(app::Session& session, const bench::TargetDistance& to_target,
                 const app::PairwiseDistance& look_alikes, double jnd, double clone,
                 std::uint64_t trial_seed, SimulationResults& results,
-                const app::TargetDistance& seen) {
+                const bench::TargetDistance& seen) {
   std::mt19937_64 user_rng(trial_seed ^ 0x757365722D726E67ULL);
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < results.gaps.size(); ++i) {
-    const app::PlaneOutcome plane =
-        app::play_plane_jnd(session, seen ? seen : to_target, look_alikes, jnd, user_rng, clone);
+    const bench::PlaneOutcome plane =
+        bench::play_plane_jnd(session, seen ? seen : to_target, look_alikes, jnd, user_rng, clone);
     best = std::min(best, to_target({plane.chosen}).front());
     results.gaps[i].push_back(best);
     results.seconds[i].push_back(plane.optimizer_seconds);
     results.look_alike_grids[i].push_back(plane.look_alike_grids);
     results.grids[i].push_back(plane.grids);
-    results.pinned[i].push_back(app::pinned_fraction(session.current_best()));
+    results.pinned[i].push_back(bench::pinned_fraction(session.current_best()));
   }
 }
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "app/search_benchmark.hpp"
 #include "app/session.hpp"
+#include "bench/simulated_person.hpp"
 #include "cli/arg_parser.hpp"
 #include "sps/plane_search.hpp"
 
@@ -33,16 +33,16 @@ struct SimulationResults {
   bool body() const { return !pinned.empty(); }
 };
 
-// One trial of the body or photo benchmark: the simulated person (app::play_plane_jnd, its
+// One trial of the body or photo benchmark: the simulated person (bench::play_plane_jnd, its
 // own random stream from `trial_seed`) plays `results`' iterations on `session`, each plane
 // recorded as the best gap so far, the optimizer's time, the grids and look-alike grids shown
 // (closer than `clone` by `look_alikes`) and the pinned fraction of the current best. The
 // person judges the cells by `seen` (their visible distance to the target) when given, else by
 // `to_target`, which is always the gap.
-void play_trial(app::Session& session, const app::TargetDistance& to_target,
+void play_trial(app::Session& session, const bench::TargetDistance& to_target,
                 const app::PairwiseDistance& look_alikes, double jnd, double clone,
                 std::uint64_t trial_seed, SimulationResults& results,
-                const app::TargetDistance& seen = {});
+                const bench::TargetDistance& seen = {});
 
 // Prints the table (after `title`) and writes --csv / --per-trial-csv when asked.
 void write_simulation_results(const ArgParser& args, const std::string& title,

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "app/search_benchmark.hpp"
 #include "app/session.hpp"
+#include "bench/simulated_person.hpp"
 #include "cli/simulate_common.hpp"
 #include "spaces/photo_enhancement.hpp"
 #include "spaces/photo_image.hpp"
@@ -167,7 +167,7 @@ int run_photo_simulation(const ArgParser& args) {
     const auto trial_seed = static_cast<std::uint64_t>(seed + trial);
     const Eigen::VectorXd target =
         fixed_target.size() > 0 ? fixed_target : random_target(trial_seed);
-    const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+    const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
       return distance.to_target(xs, target);
     };
     app::SessionSettings settings;

@@ -384,7 +384,7 @@ TEST_CASE("a history entry set with the sliders (no clicks) loads and undoes",
 #include <limits>
 #include <random>
 
-#include "app/search_benchmark.hpp"
+#include "bench/simulated_person.hpp"
 
 namespace {
 
@@ -422,7 +422,7 @@ TEST_CASE("the jnd user picks uniformly among the cells within D of the best", "
   std::mt19937_64 rng(3);
   const std::vector<double> d{10.0, 12.0, 20.0, 14.9, 15.1, 30.0};
   std::vector<int> counts(d.size(), 0);
-  for (int i = 0; i < 3000; ++i) ++counts[static_cast<size_t>(app::jnd_pick(d, 5.0, rng))];
+  for (int i = 0; i < 3000; ++i) ++counts[static_cast<size_t>(bench::jnd_pick(d, 5.0, rng))];
   CHECK(counts[2] == 0);
   CHECK(counts[4] == 0);
   CHECK(counts[5] == 0);
@@ -431,36 +431,36 @@ TEST_CASE("the jnd user picks uniformly among the cells within D of the best", "
     CHECK(counts[static_cast<size_t>(i)] < 1150);
   }
   // D = 0: the best cell only (a perfect user).
-  for (int i = 0; i < 20; ++i) CHECK(app::jnd_pick(d, 0.0, rng) == 0);
-  CHECK_THROWS(app::jnd_pick({}, 5.0, rng));
+  for (int i = 0; i < 20; ++i) CHECK(bench::jnd_pick(d, 0.0, rng) == 0);
+  CHECK_THROWS(bench::jnd_pick({}, 5.0, rng));
 }
 
 TEST_CASE("a grid with two identical cells is counted as showing look-alikes", "[app][jnd]") {
   const auto distance = euclidean_mm(1000.0);
   std::vector<Eigen::VectorXd> grid;
   for (int i = 0; i < 9; ++i) grid.push_back(Eigen::VectorXd::Constant(3, 0.1 * i));
-  CHECK_FALSE(app::has_look_alikes(distance(grid)));
+  CHECK_FALSE(bench::has_look_alikes(distance(grid)));
   grid[7] = grid[2];
-  CHECK(app::has_look_alikes(distance(grid)));
+  CHECK(bench::has_look_alikes(distance(grid)));
   // 4 mm apart at most is a look-alike, 6 mm is not.
   grid[7] = grid[2] + Eigen::VectorXd::Unit(3, 0) * 0.004;
-  CHECK(app::has_look_alikes(distance(grid)));
+  CHECK(bench::has_look_alikes(distance(grid)));
   grid[7] = grid[2] + Eigen::VectorXd::Unit(3, 0) * 0.006;
-  CHECK_FALSE(app::has_look_alikes(distance(grid)));
+  CHECK_FALSE(bench::has_look_alikes(distance(grid)));
 }
 
 TEST_CASE("pinned coordinates are counted", "[app][jnd]") {
   Eigen::VectorXd x(5);
   x << 0.0, 0.5, 1.0, 0.9995, 0.002;
-  CHECK(app::pinned_fraction(x) == Approx(3.0 / 5.0));
-  CHECK(app::pinned_fraction(Eigen::VectorXd::Constant(4, 0.5)) == 0.0);
+  CHECK(bench::pinned_fraction(x) == Approx(3.0 / 5.0));
+  CHECK(bench::pinned_fraction(Eigen::VectorXd::Constant(4, 0.5)) == 0.0);
 }
 
 TEST_CASE("the jnd user plays a plane through the session and its grids are counted",
           "[app][jnd]") {
   app::Session session(small_settings());
   const Eigen::VectorXd target = Eigen::VectorXd::Constant(4, 0.3);
-  const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+  const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
     std::vector<double> d;
     for (const auto& x : xs) d.push_back(1000.0 * (x - target).norm());
     return d;
@@ -471,12 +471,12 @@ TEST_CASE("the jnd user plays a plane through the session and its grids are coun
     return Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(xs.size()),
                                  static_cast<Eigen::Index>(xs.size()));
   };
-  const auto first = app::play_plane_jnd(session, to_target, all_alike, 5.0, rng);
+  const auto first = bench::play_plane_jnd(session, to_target, all_alike, 5.0, rng);
   CHECK(first.grids == 4);
   CHECK(first.look_alike_grids == 4);
   CHECK(session.planes_done() == 1);
   CHECK(session.search().iteration() == 1);
-  const auto second = app::play_plane_jnd(session, to_target, euclidean_mm(1e6), 0.0, rng);
+  const auto second = bench::play_plane_jnd(session, to_target, euclidean_mm(1e6), 0.0, rng);
   CHECK(second.grids == 4);
   CHECK(second.look_alike_grids == 0);
   // The perfect user (D = 0) clicked the cell nearest the target at every level.

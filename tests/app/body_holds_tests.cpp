@@ -8,9 +8,9 @@
 #include <memory>
 #include <random>
 
-#include "app/search_benchmark.hpp"
 #include "app/session.hpp"
 #include "app/worker.hpp"
+#include "bench/simulated_person.hpp"
 #include "body/measurement_solve.hpp"
 #include "body/measurements.hpp"
 #include "body/model_loader.hpp"
@@ -86,7 +86,7 @@ TEST_CASE(
     "[holds][body]") {
   HeldSession held(1.74);
   const Eigen::VectorXf target = Eigen::VectorXf::Constant(10, 0.4f);
-  const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+  const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
     return held.distance.rms_to_betas_mm(xs, target);
   };
   std::mt19937_64 rng(3);
@@ -94,7 +94,7 @@ TEST_CASE(
     CAPTURE(plane);
     // Zoom decisions are taken on the held plane's own points; the grids shown (projected)
     // still hold no look-alikes.
-    const auto outcome = app::play_plane_jnd(held.session, to_target, held.pairwise, 5.0, rng);
+    const auto outcome = bench::play_plane_jnd(held.session, to_target, held.pairwise, 5.0, rng);
     CHECK(outcome.grids >= 2);
     CHECK(outcome.look_alike_grids == 0);
     // The search's centre and the plane shown: on the held height (the solve aims for 30% of

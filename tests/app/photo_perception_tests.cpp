@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "app/search_benchmark.hpp"
 #include "app/session.hpp"
+#include "bench/simulated_person.hpp"
 #include "spaces/photo_enhancement.hpp"
 #include "spaces/photo_image.hpp"
 #include "spaces/photo_perception.hpp"
@@ -122,14 +122,14 @@ TEST_CASE("a photo session with the colour-difference hook shows no cells closer
     target[0] = 0.7;
     target[6] = 0.65;
     target[8] = 0.3;
-    const app::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+    const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
       return distance.to_target(xs, target);
     };
     std::mt19937_64 rng(seed);
     double first = 0.0;
     double best = 1e9;
     for (int plane = 0; plane < 4; ++plane) {
-      const app::PlaneOutcome outcome = app::play_plane_jnd(
+      const bench::PlaneOutcome outcome = bench::play_plane_jnd(
           session, to_target, pairwise, spaces::kPhotoJndDeltaE, rng, spaces::kPhotoDistinctDeltaE);
       grids += outcome.grids;
       look_alike_grids += outcome.look_alike_grids;

@@ -1,26 +1,26 @@
-#include "app/long_session.hpp"
+#include "bench/long_session.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-namespace app {
+namespace bench {
 
-int write_long_session(ControllerOptions options, const SpaceOpener& opener, int planes,
+const int kClickPattern[8][2] = {{0, 0}, {2, 1}, {1, 2}, {2, 2}, {0, 1}, {1, 0}, {2, 0}, {0, 2}};
+
+int write_long_session(app::ControllerOptions options, const app::SpaceOpener& opener, int planes,
                        const std::filesystem::path& path) {
   std::error_code ec;
   std::filesystem::remove(path, ec);
   options.session_path = path;
-  options.resume = ResumePolicy::kNo;
+  options.resume = app::ResumePolicy::kNo;
   options.zoom_seconds = 0.0;
   options.morph_seconds = 0.0;
   options.log = false;
   // Only the newest copy is written: a save after every click would cost a second per plane
   // on a long session.
   options.background_autosave = true;
-  GalleryController c(std::move(options), opener, 0.0);
-  // The same cells bench-gui's clicks use.
-  static const int pattern[][2] = {{0, 0}, {2, 1}, {1, 2}, {2, 2}, {0, 1}, {1, 0}, {2, 0}, {0, 2}};
+  app::GalleryController c(std::move(options), opener, 0.0);
   const int n = c.session().settings().grid_size;
   double t = 0.0;
   int clicks = 0;
@@ -32,8 +32,8 @@ int write_long_session(ControllerOptions options, const SpaceOpener& opener, int
     if (c.busy()) {
       c.wait_for_optimizer(t);
     } else {
-      const auto& p = pattern[clicks % 8];
-      c.queue(intent::ClickCell{std::min(p[0], n - 1), std::min(p[1], n - 1)});
+      const auto& p = kClickPattern[clicks % 8];
+      c.queue(app::intent::ClickCell{std::min(p[0], n - 1), std::min(p[1], n - 1)});
       ++clicks;
     }
     t += 1.0;
@@ -46,4 +46,4 @@ int write_long_session(ControllerOptions options, const SpaceOpener& opener, int
   return c.session().planes_done();
 }
 
-}  // namespace app
+}  // namespace bench

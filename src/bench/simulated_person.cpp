@@ -1,4 +1,4 @@
-#include "app/search_benchmark.hpp"
+#include "bench/simulated_person.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "app/worker.hpp"
 
-namespace app {
+namespace bench {
 
 int jnd_pick(const std::vector<double>& distance_mm, double jnd_mm, std::mt19937_64& rng) {
   if (distance_mm.empty()) throw std::invalid_argument("jnd_pick: no cells");
@@ -37,8 +37,8 @@ double pinned_fraction(const Eigen::VectorXd& x, double tolerance) {
   return static_cast<double>(pinned) / static_cast<double>(x.size());
 }
 
-PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
-                            const PairwiseDistance& look_alikes, double jnd_mm,
+PlaneOutcome play_plane_jnd(app::Session& session, const TargetDistance& to_target,
+                            const app::PairwiseDistance& look_alikes, double jnd_mm,
                             std::mt19937_64& rng, double clone_mm) {
   PlaneOutcome out;
   const int n = session.settings().grid_size;
@@ -48,13 +48,13 @@ PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
     ++out.grids;
     if (look_alikes && has_look_alikes(look_alikes(xs), clone_mm)) ++out.look_alike_grids;
     const int index = jnd_pick(to_target(xs), jnd_mm, rng);
-    if (session.click({index % n, index / n}) == ClickResult::kIgnored) {
+    if (session.click({index % n, index / n}) == app::ClickResult::kIgnored) {
       throw std::logic_error("the session ignored a click inside the grid");
     }
   }
-  const Submission submission = session.submission();
+  const app::Submission submission = session.submission();
   out.chosen = submission.chosen;
-  SubmitWorker worker;
+  app::SubmitWorker worker;
   worker.start(session.search(), submission, 0, std::chrono::milliseconds(0),
                session.plane_preparer());
   auto result = worker.wait();
@@ -66,4 +66,4 @@ PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
   return out;
 }
 
-}  // namespace app
+}  // namespace bench

@@ -12,7 +12,7 @@
 
 #include "app/session.hpp"
 
-namespace app {
+namespace bench {
 
 // Distance (mm) of each search point's body to the body the user has in mind.
 using TargetDistance = std::function<std::vector<double>(const std::vector<Eigen::VectorXd>&)>;
@@ -23,7 +23,7 @@ int jnd_pick(const std::vector<double>& distance_mm, double jnd_mm, std::mt19937
 
 // True when two cells of a grid are look-alikes: their bodies differ by less than `clone_mm`
 // at every vertex (pairwise largest vertex distances, as PairwiseDistance returns them).
-bool has_look_alikes(const Eigen::MatrixXd& pairwise_mm, double clone_mm = kCloneMm);
+bool has_look_alikes(const Eigen::MatrixXd& pairwise_mm, double clone_mm = app::kCloneMm);
 
 // Fraction of the coordinates of x within `tolerance` of 0 or 1 (pinned on the box).
 double pinned_fraction(const Eigen::VectorXd& x, double tolerance = 1e-3);
@@ -39,8 +39,8 @@ struct PlaneOutcome {
 // worker, and the session moves on to the next plane. `look_alikes` measures the grids shown
 // (it need not be the session's own distance hook). Throws if the optimizer fails.
 // Grids count as look-alike grids when two cells differ by less than `clone_mm`.
-PlaneOutcome play_plane_jnd(Session& session, const TargetDistance& to_target,
-                            const PairwiseDistance& look_alikes, double jnd_mm,
-                            std::mt19937_64& rng, double clone_mm = kCloneMm);
+PlaneOutcome play_plane_jnd(app::Session& session, const TargetDistance& to_target,
+                            const app::PairwiseDistance& look_alikes, double jnd_mm,
+                            std::mt19937_64& rng, double clone_mm = app::kCloneMm);
 
-}  // namespace app
+}  // namespace bench
