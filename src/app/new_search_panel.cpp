@@ -79,21 +79,10 @@ void NewSearchPanel::draw(PanelContext& ctx) {
 }
 
 void NewSearchPanel::start(PanelContext& ctx) {
-  const SpaceKind& kind = catalogue_.get(kind_);
-  SpaceSettings space = catalogue_.default_settings(kind_);
-  if (!kind.dimensions_fixed) space.dimensions = dims_;
-  if (SourcePanel* source = panel(kind_)) {
-    const auto chosen = source->chosen_source();
-    if (!chosen) return;
-    space.source = *chosen;
-  }
-  requested_ = space;
-  const intent::Open o{space, grid_, zoom_};
-  if (ctx.c.has_progress()) {
-    confirm_open_ = o;  // ask first: a search is work
-  } else {
-    ctx.c.queue(o);
-  }
+  SourcePanel* source = panel(kind_);
+  const auto chosen = source != nullptr ? source->chosen_source() : std::optional<std::string>("");
+  if (!chosen) return;
+  request(ctx, *chosen);
 }
 
 void NewSearchPanel::open_dropped(PanelContext& ctx, const std::string& path) {
@@ -101,19 +90,21 @@ void NewSearchPanel::open_dropped(PanelContext& ctx, const std::string& path) {
   select_kind(kind != nullptr ? *kind : catalogue_.default_kind());
   ctx.prefs.side_tab = "new-search";
   grid_ = catalogue_.get(kind_).grid_size;
-  if (SourcePanel* source = panel(kind_)) source->use_file(path);
+  SourcePanel* source = panel(kind_);
+  if (source != nullptr) source->use_file(path);
   // A file the kind cannot use still starts: the space's own error names the file and the
   // problem, and the current search stays.
+  request(ctx, source != nullptr ? source->chosen_source().value_or(path) : path);
+}
+
+void NewSearchPanel::request(PanelContext& ctx, const std::string& source) {
   SpaceSettings space = catalogue_.default_settings(kind_);
-  space.source = path;
-  if (SourcePanel* source = panel(kind_); source != nullptr) {
-    space.source = source->chosen_source().value_or(path);
-  }
   if (!catalogue_.get(kind_).dimensions_fixed) space.dimensions = dims_;
+  space.source = source;
   requested_ = space;
   const intent::Open o{space, grid_, zoom_};
   if (ctx.c.has_progress()) {
-    confirm_open_ = o;
+    confirm_open_ = o;  // ask first: a search is work
   } else {
     ctx.c.queue(o);
   }

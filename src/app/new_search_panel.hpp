@@ -43,6 +43,8 @@ class NewSearchPanel final : public SourcePanelHost {
 
  private:
   SourcePanel* panel(const std::string& kind);
+  // A new search of the shown kind on `source` (asks first if the current one has progress).
+  void request(PanelContext& ctx, const std::string& source);
   void select_kind(const SpaceKind& kind);
 
   const SpaceCatalogue& catalogue_;

@@ -64,22 +64,24 @@ Eigen::VectorXd target_point(const Eigen::VectorXf& target_betas, int dims) {
 
 }  // namespace
 
-std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
-                                                   const Eigen::VectorXf& target_betas) const {
+std::vector<double> ShapeDistance::to_betas_mm(
+    const std::vector<Eigen::VectorXd>& xs, const Eigen::VectorXf& target_betas,
+    double (ShapeDistance::*distance)(const Eigen::VectorXd&, const Eigen::VectorXd&) const) const {
   const Eigen::VectorXd target = target_point(target_betas, dims());
   std::vector<double> out;
   out.reserve(xs.size());
-  for (const auto& x : xs) out.push_back(rms_mm(x, target));
+  for (const auto& x : xs) out.push_back((this->*distance)(x, target));
   return out;
+}
+
+std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                                   const Eigen::VectorXf& target_betas) const {
+  return to_betas_mm(xs, target_betas, &ShapeDistance::rms_mm);
 }
 
 std::vector<double> ShapeDistance::max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
                                                    const Eigen::VectorXf& target_betas) const {
-  const Eigen::VectorXd target = target_point(target_betas, dims());
-  std::vector<double> out;
-  out.reserve(xs.size());
-  for (const auto& x : xs) out.push_back(max_mm(x, target));
-  return out;
+  return to_betas_mm(xs, target_betas, &ShapeDistance::max_mm);
 }
 
 Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs) const {

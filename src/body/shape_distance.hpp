@@ -46,6 +46,12 @@ class ShapeDistance {
   Eigen::VectorXd direction_rms_mm() const;
 
  private:
+  // `distance` of each body to the body with the given betas.
+  std::vector<double> to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                  const Eigen::VectorXf& target_betas,
+                                  double (ShapeDistance::*distance)(const Eigen::VectorXd&,
+                                                                    const Eigen::VectorXd&)
+                                      const) const;
   Eigen::MatrixXf unit_dirs_mm_;  // 3V x K: d vertices / d x, mm (6000 * shapedirs)
 };
 
