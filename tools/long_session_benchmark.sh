@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The window on a fresh session against one with PLANES finished planes (default 50), side by
-# side: bench-gui on each, alternating, RUNS times (default 2). Prints, per session, the frame
-# time while the camera orbits (it turns every frame), the click-to-frame time, the frame time
-# of the zoom animations, launch to first grid and the start-up memory (peak RSS at the first
-# grid), and how far the long session's mean is from the fresh one's. The long session is
-# made once, in-process, by bench-gui --write-session (the clicks go through the real
-# controller, optimizer and autosave); each run resumes a copy of it.
+# The window on a fresh session and on one with 1 finished plane against one with PLANES
+# finished planes (default 50), side by side: bench-gui on each, in turn, RUNS times (default
+# 2). Prints, per session, the frame time while the camera orbits (it turns every frame), the
+# click-to-frame time, the frame time of the zoom animations, launch to first grid and the
+# start-up memory (peak RSS at the first grid), and how far the long session's mean is from the
+# fresh and the one-plane session's. The sessions are made once, in-process, by bench-gui
+# --write-session (the clicks go through the real controller, optimizer and autosave); each
+# run resumes a copy.
 #   bash tools/long_session_benchmark.sh [BUILD_DIR] [PLANES] [RUNS]   (starts Xvfb when needed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,9 +23,14 @@ trap 'rm -rf "$T"' EXIT
 # 3x3 cells of 180 px: a window that fits the 1280x720 screen.
 COMMON=(bench-gui --cell-size 180 --clicks 12 --orbit-frames 90)
 "$APP" "${COMMON[@]}" --write-session "$T/long.json" --planes-done "$PLANES" | tee "$T/make.log"
+# One finished plane: what the long session is measured against as well. The fresh session's
+# clicks are on the first plane, whose grid is made differently (the visible first plane), so
+# fresh against long mixes the session's length with the first plane's content.
+"$APP" "${COMMON[@]}" --write-session "$T/short.json" --planes-done 1 | tee -a "$T/make.log"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for run in $(seq 1 "$RUNS"); do
   "$APP" "${COMMON[@]}" >"$T/fresh-$run.txt" 2>&1
+  "$APP" "${COMMON[@]}" --session "$T/short.json" >"$T/short-$run.txt" 2>&1
   "$APP" "${COMMON[@]}" --session "$T/long.json" >"$T/long-$run.txt" 2>&1
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -48,16 +54,17 @@ def values(kind, pattern):
         m = re.search(pattern, text, re.M)
         out.append(float(m.group(1)) if m else float("nan"))
     return out
-print(f"| measure | fresh | {planes} planes | long vs fresh (means) |")
-print("|---|---|---|---|")
+print(f"| measure | fresh | 1 plane | {planes} planes | {planes} vs fresh | {planes} vs 1 plane (means) |")
+print("|---|---|---|---|---|---|")
+mean = lambda v: sum(v) / len(v)
+gap = lambda a, b: (mean(a) - mean(b)) / mean(b) * 100 if mean(b) else float("nan")
+fmt = lambda v: " / ".join(f"{x:.1f}" for x in v)
 for name, pattern in metrics:
-    fresh, long_ = values("fresh", pattern), values("long", pattern)
-    mf, ml = sum(fresh) / len(fresh), sum(long_) / len(long_)
-    diff = (ml - mf) / mf * 100 if mf else float("nan")
-    fmt = lambda v: " / ".join(f"{x:.1f}" for x in v)
-    print(f"| {name} | {fmt(fresh)} | {fmt(long_)} | {diff:+.0f} % |")
+    fresh, short, long_ = (values(k, pattern) for k in ("fresh", "short", "long"))
+    print(f"| {name} | {fmt(fresh)} | {fmt(short)} | {fmt(long_)} | {gap(long_, fresh):+.0f} % "
+          f"| {gap(long_, short):+.0f} % |")
 for run in range(1, runs + 1):
-    for kind in ("fresh", "long"):
+    for kind in ("fresh", "short", "long"):
         text = open(f"{folder}/{kind}-{run}.txt").read()
         if "click to frame" not in text:
             print(f"{kind} run {run} printed no result:\n{text[-2000:]}")
