@@ -408,6 +408,7 @@ ControllerOptions controller_options(const GalleryOptions& o) {
   c.optimizer_delay_ms = o.optimizer_delay_ms;
   c.targets = o.targets;
   c.holds = o.holds;
+  c.report_messages = o.report_layout;
   return c;
 }
 

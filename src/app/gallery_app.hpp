@@ -50,7 +50,8 @@ struct GalleryOptions {
   std::filesystem::path screenshot_path;  // F12 writes it; see screenshot_after_frames
   int screenshot_after_frames = -1;       // >= 0: write the screenshot after that many frames
   bool quit_after_screenshot = false;
-  bool report_layout = false;  // print the grid cells' window rectangles (scripted tests)
+  // Print the grid cells' window rectangles and each message shown (scripted tests).
+  bool report_layout = false;
   int optimizer_delay_ms = 0;  // testing: hold each submission back this long
 
   // A watcher of the frames (bench-gui, gallery --benchmark-clicks: src/bench): it may click

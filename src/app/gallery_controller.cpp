@@ -167,6 +167,12 @@ GalleryController::~GalleryController() {
 
 void GalleryController::say(MessageKind kind, std::string text) {
   message_ = {kind, std::move(text)};
+  if (options_.report_messages) {
+    const char* name = kind == MessageKind::kError     ? "error"
+                       : kind == MessageKind::kSuccess ? "success"
+                                                       : "info";
+    std::cout << "[message] " << name << ' ' << message_.text << std::endl;
+  }
   if (!options_.log) return;
   if (kind == MessageKind::kError) {
     std::cerr << "sequential-gallery: " << message_.text << std::endl;

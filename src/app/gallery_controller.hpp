@@ -46,6 +46,9 @@ struct ControllerOptions {
   // plane always takes zoom_levels clicks), for tests of what clicks do to a session.
   bool perceptual_zoom = true;
   bool log = true;  // messages also go to stdout / stderr
+  // Each message also as one "[message] error|success|info TEXT" line on stdout, so that
+  // scripted window tests read what the window shows by its kind, not by a log's wording.
+  bool report_messages = false;
   // Autosave on a thread of its own (the window); off, every save is done before the intent
   // that caused it returns (tests read the file right after).
   bool background_autosave = false;

@@ -46,7 +46,8 @@ const char* const kUsage =
     "  --zoom-seconds S        zoom animation length (default 1.5)\n"
     "  --screenshot FILE.png   F12 writes a screenshot of the window there\n"
     "  --screenshot-after-frames N   write it after N frames (with --quit-after-screenshot)\n"
-    "  --report-layout         print each grid cell's window position and size (for tests)\n"
+    "  --report-layout         print each grid cell's window position and size and each\n"
+    "                          message shown, as [layout] and [message] lines (for tests)\n"
     "  --optimizer-delay-ms MS (testing) hold each optimizer run back, to see the UI stay live\n"
     "  --benchmark-clicks N    click N cells automatically, print frame-time statistics of the\n"
     "                          zoom animations and launch-to-first-grid time, then exit\n";

@@ -24,6 +24,12 @@ wait_for() {  # wait_for SECONDS COMMAND...: poll until the command succeeds
   done
   return 1
 }
+shown() {  # shown KIND PATTERN: the window showed a message of that kind matching the pattern
+  grep -qs "^\[message\] $1 .*$2" "$T/log"
+}
+shown_any() {  # shown_any KIND: the window showed a message of that kind
+  grep -qs "^\[message\] $1 " "$T/log"
+}
 wait_for_window() {  # sets WIN once the app has reported its grid and its window exists
   wait_for 30 grep -qs '^\[layout\] cell 9 ' "$T/log" || fail "no window / grid within 30 s"
   WIN=$(xdotool search --sync --name '^Sequential Gallery$')

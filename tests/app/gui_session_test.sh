@@ -66,7 +66,8 @@ APP_PID=
 
 echo "== relaunch and resume: nothing lost"
 launch --resume yes
-grep -q 'resumed' "$T/log" || fail "session was not resumed"
+shown info "$T/session.json" || fail "the window did not say which session it resumed"
+! shown_any error || fail "an error was shown"
 [[ "$(session_field 'len(s["history"])')" == 1 ]] || fail "history lost on resume"
 [[ "$(session_field 'len(s["path"])')" == 2 ]] || fail "zoom path lost on resume"
 click_cell 2
@@ -89,7 +90,7 @@ count = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
 assert count > 100, count
 print("glb ok:", len(data), "bytes,", count, "vertices")
 PYEOF
-grep -q 'saved' "$T/log" || fail "no save message"
+wait_for 5 shown success "$T/chosen.glb" || fail "the saved file's path was not shown"
 
 echo "== close the window; the session is saved"
 kill "$APP_PID"

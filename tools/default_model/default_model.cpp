@@ -65,7 +65,7 @@ std::vector<Vec3> smoothed_normals(const TriMesh& mesh, int iterations) {
 
 GeneratedModel build_model(const std::string& name, const Template& tpl,
                            const DeformationModel& deformation, const Eigen::MatrixXd& theta,
-                           int components);
+                           int components, int threads);
 
 }  // namespace
 
@@ -124,9 +124,11 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   Eigen::MatrixXd both(female.rows() + male.rows(), P);
   both << female, male;
   std::vector<GeneratedModel> out;
-  out.push_back(build_model("female", tpl, deformation, female, options.components));
-  out.push_back(build_model("male", tpl, deformation, male, options.components));
-  out.push_back(build_model("neutral", tpl, deformation, both, options.components));
+  out.push_back(
+      build_model("female", tpl, deformation, female, options.components, options.threads));
+  out.push_back(build_model("male", tpl, deformation, male, options.components, options.threads));
+  out.push_back(
+      build_model("neutral", tpl, deformation, both, options.components, options.threads));
   out[0].calibration_reports = {calibration[0]};
   out[1].calibration_reports = {calibration[1]};
   out[2].calibration_reports = calibration;
@@ -137,7 +139,7 @@ namespace {
 
 GeneratedModel build_model(const std::string& name, const Template& tpl,
                            const DeformationModel& deformation, const Eigen::MatrixXd& theta,
-                           int components) {
+                           int components, int threads) {
   const TriMesh& mesh = tpl.mesh;
   const int V = static_cast<int>(mesh.vertices.size());
   const PcaResult pca = factored_pca(theta, deformation.basis(), components);
@@ -233,12 +235,23 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
     arrays.push_back(make_array("J", "<f4", {std::size_t(J), 3}, j));
   }
   {
+    // The limbs' correctives are the template's; the shoulders', hips' and head's are fitted
+    // again on this model's mean body, whose arms and neck are not the template's.
+    Eigen::MatrixXf posedirs = tpl.posedirs;
+    {
+      std::vector<Vec3> rest(V);
+      for (int v = 0; v < V; ++v) rest[v] = out.v_template.row(v).transpose().cast<double>();
+      SmplxRig rig = tpl.rig;
+      for (int j = 0; j < rig.size(); ++j)
+        rig.joints[j] = out.joints.row(j).transpose().cast<double>();
+      refit_rotation_share_correctives(rest, rig, tpl.rig_weights, threads, posedirs);
+    }
     // (V, 3, P) in C order, as SMPL stores posedirs: element [v][a][p] = posedirs(3v + a, p).
-    const Eigen::Index Pc = tpl.posedirs.cols();
+    const Eigen::Index Pc = posedirs.cols();
     std::vector<float> p(static_cast<std::size_t>(3) * V * Pc);
     for (int r = 0; r < 3 * V; ++r)
       for (Eigen::Index c = 0; c < Pc; ++c)
-        p[static_cast<std::size_t>(r) * Pc + c] = tpl.posedirs(r, c);
+        p[static_cast<std::size_t>(r) * Pc + c] = posedirs(r, c);
     arrays.push_back(
         make_array("posedirs", "<f4", {std::size_t(V), 3, static_cast<std::size_t>(Pc)}, p));
   }

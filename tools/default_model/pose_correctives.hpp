@@ -1,12 +1,12 @@
 // Pose correctives in SMPL's `posedirs` layout for the default models' rig, fitted to posed
-// templates. The template is a union of primitives that follow the bones (mannequin_shape.hpp),
-// so the generator can pose the template itself: turn the primitives after a joint about it and
-// the union keeps its shape (an elbow bends round its capsules instead of collapsing, a twisted
-// forearm stays round). For each limb joint, the template posed by its skin weights (linear
-// blend skinning) in a set of rotations of that joint alone is projected onto that posed
-// surface; the differences, taken back to the rest pose through each vertex's blended
-// transform, are fitted linearly in the joint's (R - I) entries as SMPL's posedirs are:
-// offset(v) = sum_j P_vj vec(R_j - I), 9 columns per joint after the root.
+// templates (and, where the template cannot be posed, to rotation-shared skinning). The template is
+// a union of primitives that follow the bones (mannequin_shape.hpp), so the generator can pose the
+// template itself: turn the primitives after a joint about it and the union keeps its shape (an
+// elbow bends round its capsules instead of collapsing, a twisted forearm stays round). For each
+// limb joint, the template posed by its skin weights (linear blend skinning) in a set of rotations
+// of that joint alone is projected onto that posed surface; the differences, taken back to the rest
+// pose through each vertex's blended transform, are fitted linearly in the joint's (R - I) entries
+// as SMPL's posedirs are: offset(v) = sum_j P_vj vec(R_j - I), 9 columns per joint after the root.
 #pragma once
 
 #include <string>
@@ -20,17 +20,29 @@
 namespace default_model {
 
 struct PoseCorrectiveReport {
-  int joints = 0;                // joints with correctives
-  int poses = 0;                 // posed templates fitted
-  double skinning_error_mm = 0;  // mean |skinned - posed template| in the blend zones
-  double fitted_error_mm = 0;    // mean |skinned with correctives - posed template|, the same
+  int joints = 0;                 // joints with correctives
+  int poses = 0;                  // posed templates fitted
+  double skinning_error_mm = 0;   // mean |skinned - posed template| in the blend zones
+  double fitted_error_mm = 0;     // mean |skinned with correctives - posed template|, the same
+  int rotation_share_joints = 0;  // joints whose correctives keep the distance from the joint
+  int rotation_share_poses = 0;
   std::string describe() const;
 };
 
 // 3V x 9 (J - 1), row 3v + axis, column 9 (j - 1) + 3 r + c for entry (r, c) of R_j - I. The
-// elbows, knees and ankles get correctives; the other joints none (zero columns).
+// elbows, knees and ankles get correctives fitted to the posed template; the shoulders, hips
+// and head correctives that keep the blend zone's distance from the joint (each vertex turned
+// by its share of the rotation); the other joints none (zero columns).
 Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& mesh,
                                      const SmplxRig& rig, const Eigen::MatrixXd& weights,
                                      int threads, PoseCorrectiveReport* report = nullptr);
+
+// Refits the shoulders', hips' and head's columns of `posedirs` on another rest body of the
+// template's topology (a model's mean body, with `rig`'s joints at that body's joints): their
+// offsets are a share of each vertex's distance from the joint, so a body with slimmer arms
+// than the template needs smaller ones.
+void refit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,
+                                      const Eigen::MatrixXd& weights, int threads,
+                                      Eigen::MatrixXf& posedirs);
 
 }  // namespace default_model

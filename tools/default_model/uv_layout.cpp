@@ -12,6 +12,8 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "uv_packing.hpp"
+
 namespace default_model {
 
 namespace {
@@ -408,18 +410,15 @@ UvLayout uv_layout(const TriMesh& mesh, const SmplxRig& rig, const Eigen::Matrix
   const int T = static_cast<int>(texture_source.size());
   out.uv.assign(T, Eigen::Vector2d::Zero());
 
-  // 4. Flatten each chart, scale it to its area, turn its long side horizontal.
-  struct Box {
-    int chart;
-    Eigen::Vector2d lo, hi;
-  };
-  std::vector<Box> boxes;
+  // 4. Flatten each chart and scale it to its area.
   std::vector<std::vector<int>> chart_faces(charts);
   for (int f = 0; f < F; ++f) chart_faces[chart[f]].push_back(f);
   std::vector<int> local(T, -1);
+  std::vector<PackChart> flat(charts);
+  std::vector<std::vector<int>> chart_ids(charts);
   for (int c = 0; c < charts; ++c) {
-    std::vector<int> ids;
-    std::vector<std::array<int, 3>> lc;
+    std::vector<int>& ids = chart_ids[c];
+    std::vector<std::array<int, 3>>& lc = flat[c].triangles;
     for (int f : chart_faces[c]) {
       std::array<int, 3> a;
       for (int k = 0; k < 3; ++k) {
@@ -443,61 +442,19 @@ UvLayout uv_layout(const TriMesh& mesh, const SmplxRig& rig, const Eigen::Matrix
       area2 += 0.5 * (a.x() * b.y() - a.y() * b.x());
     }
     const double s = area2 > 0 ? std::sqrt(area3 / area2) : 1.0;
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (auto& p : uv) mean += p / double(uv.size());
-    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (auto& p : uv) cov += (p - mean) * (p - mean).transpose();
-    const double angle = 0.5 * std::atan2(2 * cov(0, 1), cov(0, 0) - cov(1, 1));
-    const Eigen::Rotation2Dd turn(-angle);
-    Box box{c, Eigen::Vector2d::Constant(1e9), Eigen::Vector2d::Constant(-1e9)};
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      const Eigen::Vector2d p = s * (turn * (uv[i] - mean));
-      out.uv[ids[i]] = p;
-      box.lo = box.lo.cwiseMin(p);
-      box.hi = box.hi.cwiseMax(p);
-      local[ids[i]] = -1;
-    }
-    boxes.push_back(box);
+    for (auto& p : uv) p *= s;
+    flat[c].points = std::move(uv);
+    for (int t : ids) local[t] = -1;
   }
 
-  // 5. Shelf packing, tallest first, trying several shelf widths for the squarest result.
-  double box_area = 0;
-  for (const Box& b : boxes) box_area += (b.hi - b.lo).prod();
-  const double margin = 0.004 * std::sqrt(box_area);
-  std::sort(boxes.begin(), boxes.end(),
-            [](const Box& a, const Box& b) { return a.hi.y() - a.lo.y() > b.hi.y() - b.lo.y(); });
-  double best_side = 1e18;
-  std::vector<Eigen::Vector2d> best_offset;
-  for (double width = 0.8; width <= 2.0; width += 0.05) {
-    const double W = width * std::sqrt(box_area);
-    std::vector<Eigen::Vector2d> offset(boxes.size());
-    double x = 0, y = 0, shelf = 0, used_w = 0;
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      const Eigen::Vector2d size =
-          boxes[i].hi - boxes[i].lo + Eigen::Vector2d::Constant(2 * margin);
-      if (x > 0 && x + size.x() > W) {
-        y += shelf;
-        x = 0;
-        shelf = 0;
-      }
-      offset[i] = Eigen::Vector2d(x + margin, y + margin) - boxes[i].lo;
-      x += size.x();
-      shelf = std::max(shelf, size.y());
-      used_w = std::max(used_w, x);
-    }
-    const double side = std::max(used_w, y + shelf);
-    if (side < best_side) best_side = side, best_offset = offset;
-  }
-  std::vector<Eigen::Vector2d> chart_offset(charts);
-  for (std::size_t i = 0; i < boxes.size(); ++i) chart_offset[boxes[i].chart] = best_offset[i];
-  std::vector<char> placed(T, 0);
-  for (int f = 0; f < F; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int t = out.faces[f][k];
-      if (placed[t]) continue;
-      placed[t] = 1;
-      out.uv[t] = (out.uv[t] + chart_offset[chart[f]]) / best_side;
-    }
+  // 5. Pack the charts into [0, 1]^2 (uv_packing.hpp).
+  // 384 cells across the charts' area: about 460 across the square, so the two-cell gutter
+  // between charts is 4 texels of a 1024 texture (mipmaps of a baked texture do not bleed).
+  const ChartPacking packing = pack_charts(flat, 384);
+  for (int c = 0; c < charts; ++c)
+    for (std::size_t i = 0; i < chart_ids[c].size(); ++i)
+      out.uv[chart_ids[c][i]] =
+          packing.scale * (packing.rotation[c] * flat[c].points[i] + packing.offset[c]);
   return out;
 }
 
