@@ -20,7 +20,7 @@ struct HeldValue {
   double value = 0.0;
 };
 
-// Held values as the texts DesignSpace::hold_projector() takes ("height=1.8": the value in
+// Held values as the texts SpaceMeasurements::hold_projector() takes ("height=1.8": the value in
 // the space's units, every digit kept).
 inline std::vector<std::string> hold_texts(const std::vector<HeldValue>& held) {
   std::vector<std::string> texts;

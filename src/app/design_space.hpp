@@ -2,7 +2,9 @@
 // knows points x in [0,1]^n and cells that show them; a DesignSpace knows what a point means:
 // a body shape (BodySpace), a photo edit (PhotoSpace), ... It names the dimensions, prepares
 // a cell on the CPU (safe off the GL thread), draws a prepared cell into the bound cell
-// framebuffer, shows an inspector for a cell and exports a point to a file.
+// framebuffer, shows an inspector for a cell and exports a point to a file. What only some
+// spaces have comes as facets: what a person can see of a change (SpacePerception) and
+// measurements to hold or aim for (SpaceMeasurements).
 //
 // This header holds no GL and no ImGui; implementations live in src/spaces/.
 #pragma once
@@ -73,10 +75,63 @@ struct MeasurementPanelRequest {
   std::optional<std::vector<std::string>> targets;  // "Go" with these "name=value" targets
 };
 
+// What a person can see of a change, for the zoom and the optimizer: how different the cells
+// of some points look (entry (i, j) in mm, largest difference), so the session never shows a
+// grid of look-alikes, and how much each coordinate changes a cell over its range (mm), so the
+// optimizer does not explore invisible directions as if they mattered. The window installs
+// them on every session, exactly as `simulate --function body` does. A space without one
+// zooms by the paper's fixed factor.
+class SpacePerception {
+ public:
+  virtual ~SpacePerception() = default;
+  virtual PairwiseDistance perceptual_distance() const = 0;
+  // How the zoom adapts when the cells are `cell_px` pixels high (0: not known yet): the
+  // threshold under which two cells look alike follows from what a pixel shows.
+  virtual ZoomPolicy zoom_policy(int cell_px) const = 0;
+  // Empty: no per-coordinate scale.
+  virtual Eigen::VectorXd perceptual_scale() const = 0;
+  // With perceptual_scale(): the smallest length of a plane's sides in its units when the
+  // cells are `cell_px` pixels high (0: not known yet), so that a grid can hold cells that all
+  // look different; 0 keeps the optimizer's default (sps::SearchOptions::min_plane_length).
+  virtual double min_plane_length(int cell_px) const = 0;
+  // Where designs typically lie in the search box and how far they spread (a body model's
+  // population); empty where unknown.
+  virtual sps::Population population() const = 0;
+};
+
+// Named measurements a search may hold or aim for (a body's "height", "mass", ...), and the
+// window's panel that shows them.
+class SpaceMeasurements {
+ public:
+  virtual ~SpaceMeasurements() = default;
+  virtual std::vector<std::string> measurement_names() const = 0;
+  // Holds "name" or "name=value" (the value in SI or with a unit, "180cm"; a bare name holds
+  // the value of the body at `reference`). Throws std::invalid_argument with a message for
+  // the user (unknown name, bad value, a measurement this model lacks).
+  virtual std::shared_ptr<const ConstraintProjector> hold_projector(
+      const std::vector<std::string>& holds, const Eigen::VectorXd& reference) const = 0;
+  // The point nearest to `start` meeting "name=value" targets (smallest change of x) that also
+  // keeps the `held` values ("name=value", as hold_projector() takes them; bare names are
+  // skipped). Throws std::invalid_argument as hold_projector() does, and when a target
+  // contradicts a hold.
+  virtual TargetSolve solve_targets(const std::vector<std::string>& targets,
+                                    const Eigen::VectorXd& start,
+                                    const std::vector<std::string>& held = {}) const = 0;
+  // ImGui: the measurements panel, one row per measurement: the current best, the start and
+  // the hovered cell (each may be null), a hold toggle (`holds`: those in force, as given to
+  // hold_projector) and a target field with "Go".
+  virtual MeasurementPanelRequest draw_measurement_panel(const PreparedCell* best,
+                                                         const PreparedCell* start,
+                                                         const PreparedCell* hovered,
+                                                         const std::vector<std::string>& holds,
+                                                         MeasurementPanelState& state) const = 0;
+};
+
 class DesignSpace {
  public:
   virtual ~DesignSpace() = default;
 
+  // --- What it is ---
   virtual SpaceSettings settings() const = 0;
   // One line for the window: "body: default model, 10 components".
   virtual std::string description() const = 0;
@@ -92,76 +147,26 @@ class DesignSpace {
   virtual std::string dimension_name(int i) const = 0;
   // More about it for a tooltip (its measured effect in numbers, its share of the variance).
   virtual std::string dimension_details(int /*i*/) const { return {}; }
-  // 3x3 for bodies (the paper's) and for photos (the paper had 5x5, see PhotoSpace).
-  virtual int default_grid_size() const = 0;
+
+  // --- Cells: CPU, GPU, ImGui ---
   // Bodies are 3D (one shared orbit camera); photos are flat.
   virtual bool uses_camera() const = 0;
   // Width / height of a preview (a standing body is taller than wide; a photo has its own).
   virtual float preview_aspect() const = 0;
-
   // CPU work for one cell; thread-safe. `details` adds what the inspector shows.
   virtual std::shared_ptr<const PreparedCell> prepare(const Eigen::VectorXd& x,
                                                       bool details) const = 0;
   // GL thread only. Contents may share GPU resources the space keeps (a photo's texture).
   virtual std::unique_ptr<CellContent> make_content() = 0;
-
   // ImGui: what `shown` is (measurements, parameters), beside `reference` and the difference
   // to it when given. Called inside an ImGui window, GL thread only.
   virtual void draw_inspector(const PreparedCell& shown, const char* shown_label,
                               const PreparedCell* reference, const char* reference_label) const = 0;
-
   // Named numbers of a prepared cell with details, for tables and CSV files (a body's
   // measurements in metres; nothing for a photo, whose x is all there is).
   virtual std::vector<std::pair<std::string, double>> numbers(const PreparedCell& /*cell*/) const {
     return {};
   }
-
-  // What a person can see of a change: how different the cells of some points look
-  // (entry (i, j) in mm, largest difference), so the session never shows a grid of
-  // look-alikes, and how much each coordinate changes a cell over its range (mm), so the
-  // optimizer does not explore invisible directions as if they mattered. The window installs
-  // both on every session, exactly as `simulate --function body` does. Empty: no such
-  // measure (the session then zooms by the paper's fixed factor).
-  virtual PairwiseDistance perceptual_distance() const { return {}; }
-  // How the zoom adapts with perceptual_distance() when the cells are `cell_px` pixels high
-  // (0: not known yet): the threshold under which two cells look alike follows from what a
-  // pixel shows.
-  virtual ZoomPolicy zoom_policy(int cell_px) const {
-    (void)cell_px;
-    return {};
-  }
-  virtual Eigen::VectorXd perceptual_scale() const { return {}; }
-  // With perceptual_scale(): the smallest length of a plane's sides in its units when the
-  // cells are `cell_px` pixels high (0: not known yet), so that a grid can hold cells that all
-  // look different; 0 keeps the optimizer's default (sps::SearchOptions::min_plane_length).
-  virtual double min_plane_length(int cell_px) const {
-    (void)cell_px;
-    return 0.0;
-  }
-  // Where designs typically lie in the search box and how far they spread (a body model's
-  // population); empty where unknown.
-  virtual sps::Population population() const { return {}; }
-
-  // Measurement targets and holds. Names that may be held or solved for (a
-  // body's "height", "mass", ...; none for a photo).
-  virtual std::vector<std::string> measurement_names() const { return {}; }
-  // Holds "name" or "name=value" (the value in SI or with a unit, "180cm"; a bare name holds
-  // the value of the body at `reference`). Throws std::invalid_argument with a message for
-  // the user (unknown name, bad value, a measurement this model lacks).
-  virtual std::shared_ptr<const ConstraintProjector> hold_projector(
-      const std::vector<std::string>& /*holds*/, const Eigen::VectorXd& /*reference*/) const {
-    throw std::invalid_argument("this design space has no measurements to hold");
-  }
-  // The point nearest to `start` meeting "name=value" targets (smallest change of x) that also
-  // keeps the `held` values ("name=value", as hold_projector() takes them; bare names are
-  // skipped). Throws std::invalid_argument as hold_projector() does, and when a target
-  // contradicts a hold.
-  virtual TargetSolve solve_targets(const std::vector<std::string>& /*targets*/,
-                                    const Eigen::VectorXd& /*start*/,
-                                    const std::vector<std::string>& /*held*/ = {}) const {
-    throw std::invalid_argument("this design space has no measurements to aim for");
-  }
-
   // One short line on how `cell` differs from `reference` (a body: its two most visible
   // measurement changes, "taller 8.2 cm, heavier 9.6 kg"), drawn inside a hovered cell so
   // that nothing covers the neighbours being compared. Empty: nothing to say.
@@ -170,24 +175,26 @@ class DesignSpace {
     return {};
   }
 
-  // ImGui: the measurements panel, one row per measurement: the current best, the start and
-  // the hovered cell (each may be null), a hold toggle (`holds`: those in force, as given to
-  // hold_projector) and a target field with "Go". Spaces without measurements draw nothing.
-  virtual MeasurementPanelRequest draw_measurement_panel(const PreparedCell* /*best*/,
-                                                         const PreparedCell* /*start*/,
-                                                         const PreparedCell* /*hovered*/,
-                                                         const std::vector<std::string>& /*holds*/,
-                                                         MeasurementPanelState& /*state*/) const {
-    return {};
-  }
-
-  // Export: the file a point becomes (glTF for bodies, an image and its parameters for photos).
+  // --- Export: the file a point becomes (glTF for bodies, an image and its parameters) ---
   virtual std::string default_export_name() const = 0;  // "body.glb"
   virtual std::string export_hint() const = 0;          // ".glb or .gltf"
   // Writes the file(s) atomically; returns a short summary for the message line. Throws
   // std::runtime_error naming the file and the problem.
   virtual std::string export_point(const Eigen::VectorXd& x,
                                    const std::filesystem::path& path) const = 0;
+
+  // --- Optional facets: null where the space has none ---
+  virtual const SpacePerception* perception() const { return nullptr; }
+  virtual const SpaceMeasurements* measurements() const { return nullptr; }
 };
+
+// The space's measurements, or std::invalid_argument "this design space has no measurements
+// to <what>" (a hold or a target asked of a photo).
+inline const SpaceMeasurements& measurements_to(const DesignSpace& space, const char* what) {
+  const SpaceMeasurements* m = space.measurements();
+  if (m == nullptr)
+    throw std::invalid_argument(std::string("this design space has no measurements to ") + what);
+  return *m;
+}
 
 }  // namespace app

@@ -409,6 +409,7 @@ ControllerOptions controller_options(const GalleryOptions& o) {
   c.targets = o.targets;
   c.holds = o.holds;
   c.report_messages = o.report_layout;
+  c.catalogue = o.catalogue;
   return c;
 }
 

@@ -71,7 +71,7 @@ GalleryController::GalleryController(ControllerOptions options, SpaceOpener open
     say(MessageKind::kError, note);
   }
   options_.space = space_->settings();
-  const int grid = options_.grid_size > 0 ? options_.grid_size : space_->default_grid_size();
+  const int grid = grid_for(*space_, options_.grid_size);
   session_.emplace(session_settings(options_.space, grid, options_.zoom_levels, options_.seed));
   install_perception();
 
@@ -264,9 +264,11 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::SetCellPixels& p) {
             if (p.pixels == cell_pixels_ || p.pixels < 1) return;
             cell_pixels_ = p.pixels;
-            session_->set_zoom_policy(space_->zoom_policy(cell_pixels_));
+            const SpacePerception* perception = space_->perception();
+            if (perception == nullptr) return;
+            session_->set_zoom_policy(perception->zoom_policy(cell_pixels_));
             // From the next plane on, as the zoom policy: the grid on screen stays.
-            const double length = space_->min_plane_length(cell_pixels_);
+            const double length = perception->min_plane_length(cell_pixels_);
             if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
               session_->set_min_plane_length(length);
             }
@@ -384,7 +386,7 @@ void GalleryController::open(const intent::Open& o) {
   if (busy()) return;
   try {
     std::unique_ptr<DesignSpace> space = opener_(o.space);
-    const int grid = o.grid_size > 0 ? o.grid_size : space->default_grid_size();
+    const int grid = grid_for(*space, o.grid_size);
     Session fresh(
         session_settings(space->settings(), grid, o.zoom_levels, session_->settings().seed + 1));
     if (has_progress()) keep_old_session_file("");
@@ -471,7 +473,7 @@ void GalleryController::set_holds(const std::vector<std::string>& holds, bool re
   std::shared_ptr<const ConstraintProjector> projector;
   if (!holds.empty()) {
     try {
-      projector = space_->hold_projector(holds, session_->current_best());
+      projector = measurements_to(*space_, "hold").hold_projector(holds, session_->current_best());
     } catch (const std::exception& e) {
       say(MessageKind::kError, std::string("cannot hold that: ") + e.what());
       return;
@@ -508,7 +510,8 @@ void GalleryController::go_to_targets(const std::vector<std::string>& targets) {
     if (const auto* projector = session_->constraint_projector(); projector != nullptr) {
       held = hold_texts(projector->held_values());
     }
-    solved = space_->solve_targets(targets, session_->current_best(), held);
+    solved =
+        measurements_to(*space_, "aim for").solve_targets(targets, session_->current_best(), held);
   } catch (const std::exception& e) {
     say(MessageKind::kError, e.what());
     return;
@@ -543,16 +546,25 @@ Eigen::VectorXd GalleryController::shown_point() const {
   return session_->current_best();
 }
 
+int GalleryController::grid_for(const DesignSpace& space, int asked) const {
+  if (asked > 0) return asked;
+  if (options_.catalogue == nullptr)
+    throw std::logic_error("the controller needs a catalogue of spaces for their default grid");
+  return options_.catalogue->get(space.settings().kind).grid_size;
+}
+
 void GalleryController::install_perception() {
+  const SpacePerception* perception = space_->perception();
+  if (perception == nullptr) return;  // the paper's fixed zoom
   // A session restored from a file keeps the scale it was saved with (its planes were built
   // with it); a new one takes the space's.
   if (session_->search().options().perceptual_scale.size() == 0) {
-    const Eigen::VectorXd scale = space_->perceptual_scale();
+    const Eigen::VectorXd scale = perception->perceptual_scale();
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
       session_->set_perceptual_scale(scale);
-      if (space_->min_plane_length(cell_pixels_) > 0.0) {
-        session_->set_min_plane_length(space_->min_plane_length(cell_pixels_));
+      if (const double length = perception->min_plane_length(cell_pixels_); length > 0.0) {
+        session_->set_min_plane_length(length);
       }
     }
   }
@@ -560,12 +572,12 @@ void GalleryController::install_perception() {
   // later planes are centred on the estimate too (it only reads the saved choices).
   const sps::SearchOptions& search = session_->search().options();
   if (search.perceptual_scale.size() > 0 && search.population.empty()) {
-    const sps::Population population = space_->population();
+    const sps::Population population = perception->population();
     if (population.mean.size() == search.dims) session_->set_population(population);
   }
   if (options_.perceptual_zoom) {
-    session_->set_perceptual_distance(space_->perceptual_distance(),
-                                      space_->zoom_policy(cell_pixels_));
+    session_->set_perceptual_distance(perception->perceptual_distance(),
+                                      perception->zoom_policy(cell_pixels_));
   }
 }
 

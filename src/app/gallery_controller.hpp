@@ -23,6 +23,7 @@
 #include "app/session.hpp"
 #include "app/session_store.hpp"
 #include "app/session_writer.hpp"
+#include "app/space_catalogue.hpp"
 #include "app/worker.hpp"
 #include "sps/zoom_grid.hpp"
 #include "util/file_lock.hpp"
@@ -34,7 +35,9 @@ enum class ResumePolicy { kAsk, kYes, kNo };
 struct ControllerOptions {
   SpaceSettings space;        // the space of a new search (a resumed session brings its own)
   bool space_chosen = false;  // `space` was asked for (the command line), not a default
-  int grid_size = 0;          // 0 = the space's default (3x3)
+  int grid_size = 0;          // 0 = the kind's default grid (SpaceKind::grid_size)
+  // The kinds of space, for their default grids (also of a new search on another kind).
+  const SpaceCatalogue* catalogue = nullptr;
   int zoom_levels = 4;
   std::uint64_t seed = 1;
   std::filesystem::path session_path;  // autosave file; empty = no autosave
@@ -52,7 +55,7 @@ struct ControllerOptions {
   // Autosave on a thread of its own (the window); off, every save is done before the intent
   // that caused it returns (tests read the file right after).
   bool background_autosave = false;
-  // Issue 13, from the command line: "name=value" targets to go to first, then holds.
+  // From the command line: "name=value" targets to go to first, then holds.
   std::vector<std::string> targets;
   std::vector<std::string> holds;
 };
@@ -99,7 +102,7 @@ struct GoToTargets {
   std::vector<std::string> targets;
 };
 // The view's cells are now this many pixels high: the look-alike threshold of the zoom
-// levels still to come follows (DesignSpace::zoom_policy).
+// levels still to come follows (SpacePerception::zoom_policy).
 struct SetCellPixels {
   int pixels = 0;
 };
@@ -207,6 +210,8 @@ class GalleryController {
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
   // The space's perceptual hooks on `session_` (never saved, so after every load too).
   void install_perception();
+  // `asked`, or the kind's default grid where it is 0.
+  int grid_for(const DesignSpace& space, int asked) const;
   void after_change(const sps::Plane& plane_before);
   void poll_worker();
   void autosave();

@@ -310,7 +310,9 @@ void GalleryView::draw_tabs(PanelContext& ctx) {
   if (prefs_.side_tab != shown_tab_) pending_tab_ = prefs_.side_tab;
   if (!ImGui::BeginTabBar("side-tabs")) return;
   const bool inspecting = c.inspected() >= 0;
-  const bool has_measurements = !c.space().measurement_names().empty();
+  const SpaceMeasurements* measurements = c.space().measurements();
+  const bool has_measurements =
+      measurements != nullptr && !measurements->measurement_names().empty();
   std::string current;
   for (const std::string& tab : side_panel_tabs()) {
     const char* label = tab == "measurements" ? (has_measurements ? "Measurements" : "Details")

@@ -8,7 +8,9 @@ void MeasurementsPanel::draw(PanelContext& ctx, const PreparedCell* shown,
                              const PreparedCell* start, const PreparedCell* hovered,
                              bool inspecting) {
   GalleryController& c = ctx.c;
-  const auto names = c.space().measurement_names();
+  const SpaceMeasurements* measurements = c.space().measurements();
+  const auto names =
+      measurements != nullptr ? measurements->measurement_names() : std::vector<std::string>{};
   if (names.empty()) {
     if (shown != nullptr && start != nullptr) {
       c.space().draw_inspector(*shown, inspecting ? "chosen" : "current", start, "start");
@@ -24,7 +26,8 @@ void MeasurementsPanel::draw(PanelContext& ctx, const PreparedCell* shown,
     }
     state_.imperial = ctx.prefs.imperial;
   }
-  const auto request = c.space().draw_measurement_panel(shown, start, hovered, c.holds(), state_);
+  const auto request =
+      measurements->draw_measurement_panel(shown, start, hovered, c.holds(), state_);
   for (std::size_t i = 0; i < names.size() && i < state_.target_text.size(); ++i) {
     if (state_.target_text[i].empty()) {
       ctx.prefs.typed_targets.erase(names[i]);

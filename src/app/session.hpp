@@ -132,7 +132,7 @@ class Session {
   // Before the first click of a new session it also starts from the plane of the two most
   // visible directions (sps::visible_first_plane).
   void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit);
-  // Where the space's designs typically lie (e.g. DesignSpace::population()); with a
+  // Where the space's designs typically lie (e.g. SpacePerception::population()); with a
   // perceptual scale the planes are then centred on the estimate of the design the person has
   // in mind (sps::SearchOptions::population), from the next plane on (saved with the search).
   void set_population(const sps::Population& population) { search_.set_population(population); }

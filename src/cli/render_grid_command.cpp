@@ -73,7 +73,7 @@ int run(int argc, char** argv) {
   settings.space = space_settings.kind;
   settings.model_path = space_settings.source;
   settings.components = space->dimensions();
-  settings.grid_size = args.get_int("grid", space->default_grid_size());
+  settings.grid_size = args.get_int("grid", kind.grid_size);
   if (settings.grid_size != 3 && settings.grid_size != 5) {
     throw cli::ArgError("render-grid: --grid must be 3 or 5");
   }
@@ -81,16 +81,20 @@ int run(int argc, char** argv) {
   app::Session session(settings);
   // As the window does for a new search (GalleryController::install_perception): the space's
   // perceptual scale (which also picks the first plane) and distance.
-  const Eigen::VectorXd scale = space->perceptual_scale();
-  if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
-    session.set_perceptual_scale(scale);
-    session.set_population(space->population());
+  if (const app::SpacePerception* perception = space->perception(); perception != nullptr) {
+    const Eigen::VectorXd scale = perception->perceptual_scale();
+    if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
+      session.set_perceptual_scale(scale);
+      session.set_population(perception->population());
+    }
+    session.set_perceptual_distance(perception->perceptual_distance(),
+                                    perception->zoom_policy(cell));
   }
-  session.set_perceptual_distance(space->perceptual_distance(), space->zoom_policy(cell));
   if (const auto targets = args.get_all("target"); !targets.empty()) {
     app::TargetSolve solved;
     try {
-      solved = space->solve_targets(targets, session.current_best(), args.get_all("hold"));
+      solved = app::measurements_to(*space, "aim for")
+                   .solve_targets(targets, session.current_best(), args.get_all("hold"));
     } catch (const std::invalid_argument& e) {
       throw cli::ArgError(std::string("render-grid: --target: ") + e.what());
     }
@@ -104,7 +108,8 @@ int run(int argc, char** argv) {
   }
   if (const auto holds = args.get_all("hold"); !holds.empty()) {
     try {
-      session.set_constraint_projector(space->hold_projector(holds, session.current_best()));
+      session.set_constraint_projector(
+          app::measurements_to(*space, "hold").hold_projector(holds, session.current_best()));
     } catch (const std::invalid_argument& e) {
       throw cli::ArgError(std::string("render-grid: --hold: ") + e.what());
     }

@@ -95,7 +95,8 @@ int run(int argc, char** argv) {
       std::string listed;
       for (const auto& t : texts) listed += (listed.empty() ? "" : ", ") + t;
       try {
-        const auto projector = space->hold_projector(texts, session->current_best());
+        const auto projector =
+            app::measurements_to(*space, "hold").hold_projector(texts, session->current_best());
         std::cout << "holds: " << (projector ? projector->description() : listed) << "\n";
       } catch (const std::invalid_argument& e) {
         std::cout << "usable: no: " << path << ": its holds (" << listed

@@ -20,7 +20,9 @@ namespace spaces {
 // coefficients: N(0, 1) each), for sps::SearchOptions::population.
 sps::Population body_population(int components);
 
-class BodySpace : public app::DesignSpace {
+class BodySpace : public app::DesignSpace,
+                  public app::SpacePerception,
+                  public app::SpaceMeasurements {
  public:
   // `source`: the .npz it came from ("" = the embedded default model).
   BodySpace(body::Model model, std::string source);
@@ -37,7 +39,6 @@ class BodySpace : public app::DesignSpace {
   std::string dimension_details(int i) const override;
   std::string cell_summary(const app::PreparedCell& cell,
                            const app::PreparedCell& reference) const override;
-  int default_grid_size() const override { return 3; }
   bool uses_camera() const override { return true; }
   float preview_aspect() const override { return 260.0f / 320.0f; }  // an A-pose fits
   std::shared_ptr<const app::PreparedCell> prepare(const Eigen::VectorXd& x,
@@ -52,6 +53,10 @@ class BodySpace : public app::DesignSpace {
   std::string export_point(const Eigen::VectorXd& x,
                            const std::filesystem::path& path) const override;
 
+  const app::SpacePerception* perception() const override { return this; }
+  const app::SpaceMeasurements* measurements() const override { return this; }
+
+  // app::SpaceMeasurements
   std::vector<std::string> measurement_names() const override;
   std::shared_ptr<const app::ConstraintProjector> hold_projector(
       const std::vector<std::string>& holds, const Eigen::VectorXd& reference) const override;
@@ -63,6 +68,7 @@ class BodySpace : public app::DesignSpace {
                                  const Eigen::VectorXd& start,
                                  const std::vector<std::string>& held = {}) const override;
 
+  // app::SpacePerception
   app::PairwiseDistance perceptual_distance() const override;
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   double min_plane_length(int cell_px) const override;

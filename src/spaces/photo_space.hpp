@@ -17,7 +17,7 @@ class PhotoRenderer;
 
 namespace spaces {
 
-class PhotoSpace : public app::DesignSpace {
+class PhotoSpace : public app::DesignSpace, public app::SpacePerception {
  public:
   // `source`: the file it came from ("" = the built-in picture).
   PhotoSpace(Image image, std::string source);
@@ -27,11 +27,6 @@ class PhotoSpace : public app::DesignSpace {
   app::SpaceSettings settings() const override;
   std::string description() const override;
   std::string dimension_name(int i) const override;
-  // 3x3, where the paper used 5x5: at the default 1280x720 window a 5x5 cell is about 125 px,
-  // too small to tell colour edits a clear difference apart, and a 5x5 grid over the box
-  // could not keep all its 300 pairs that far apart (half of the first grids on the photo
-  // benchmark had a pair under it; 3x3: none). 5x5 stays one click away in New search.
-  int default_grid_size() const override { return 3; }
   bool uses_camera() const override { return false; }
   float preview_aspect() const override;
   std::shared_ptr<const app::PreparedCell> prepare(const Eigen::VectorXd& x,
@@ -42,8 +37,9 @@ class PhotoSpace : public app::DesignSpace {
   void draw_inspector(const app::PreparedCell& shown, const char* shown_label,
                       const app::PreparedCell* reference,
                       const char* reference_label) const override;
-  // Mean CIEDE2000 between the edited pictures (spaces/photo_perception.hpp), in the slots
-  // where a body space gives millimetres.
+  const app::SpacePerception* perception() const override { return this; }
+  // app::SpacePerception. Mean CIEDE2000 between the edited pictures (spaces/photo_perception.hpp),
+  // in the slots where a body space gives millimetres.
   app::PairwiseDistance perceptual_distance() const override;
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;

@@ -53,6 +53,7 @@ struct TempDir {
 
 app::ControllerOptions options(const fs::path& session, const std::string& kind = "photo") {
   app::ControllerOptions o;
+  o.catalogue = &spaces::catalogue();
   o.space = spaces::default_settings(kind);
   o.session_path = session;
   o.resume = app::ResumePolicy::kNo;
@@ -90,6 +91,77 @@ void create_test_imgui_context() {
 }
 
 }  // namespace
+
+namespace {
+
+// The least a space can be: dimensions, cells and an export, without perception or
+// measurements (no facets).
+class PlainSpace : public app::DesignSpace {
+ public:
+  app::SpaceSettings settings() const override { return {"plain", "", 4}; }
+  std::string description() const override { return "plain: 4 numbers"; }
+  std::string dimension_name(int i) const override { return "number " + std::to_string(i + 1); }
+  bool uses_camera() const override { return false; }
+  float preview_aspect() const override { return 1.0f; }
+  std::shared_ptr<const app::PreparedCell> prepare(const Eigen::VectorXd& x,
+                                                   bool details) const override {
+    auto cell = std::make_shared<app::PreparedCell>();
+    cell->x = x;
+    cell->has_details = details;
+    return cell;
+  }
+  std::unique_ptr<app::CellContent> make_content() override { return nullptr; }
+  void draw_inspector(const app::PreparedCell&, const char*, const app::PreparedCell*,
+                      const char*) const override {}
+  std::string default_export_name() const override { return "plain.txt"; }
+  std::string export_hint() const override { return ".txt"; }
+  std::string export_point(const Eigen::VectorXd&, const fs::path& path) const override {
+    return path.string();
+  }
+};
+
+}  // namespace
+
+TEST_CASE(
+    "a space without perception or measurements: the kind's grid, fixed zoom, holds "
+    "and targets refused by name",
+    "[gallery][catalogue]") {
+  app::SpaceCatalogue kinds;
+  app::SpaceKind plain;
+  plain.name = "plain";
+  plain.label = "plain numbers";
+  plain.source_noun = "Numbers";
+  plain.source_option = "numbers";
+  plain.dimensions = 4;
+  plain.grid_size = 5;
+  plain.open = [](const app::SpaceSettings&) { return std::make_unique<PlainSpace>(); };
+  kinds.add(plain);
+  TempDir dir;
+  app::ControllerOptions o = options(dir.path / "s.json");
+  o.catalogue = &kinds;
+  o.space = {"plain", "", 4};
+  GalleryController c(
+      o, [&](const app::SpaceSettings& s) { return kinds.get(s.kind).open(s); }, 0.0);
+  c.begin_frame(0.0);
+  REQUIRE(c.space().perception() == nullptr);
+  REQUIRE(c.space().measurements() == nullptr);
+  CHECK(c.session().settings().grid_size == 5);  // the kind's, not the body's or photo's 3
+  CHECK_FALSE(c.session().has_perceptual_distance());
+  CHECK(c.session().search().options().perceptual_scale.size() == 0);
+  c.queue(intent::SetHolds{{"height"}});
+  c.begin_frame(0.1);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK(c.message().text.find("no measurements to hold") != std::string::npos);
+  CHECK(c.holds().empty());
+  c.queue(intent::GoToTargets{{"height=1.8"}});
+  c.begin_frame(0.2);
+  CHECK(c.message().kind == app::MessageKind::kError);
+  CHECK(c.message().text.find("no measurements to aim for") != std::string::npos);
+  // Clicks still zoom (by the paper's fixed factor).
+  c.queue(intent::ClickCell{2, 2});
+  c.begin_frame(0.3);
+  CHECK(c.session().clicks_on_plane() == 1);
+}
 
 TEST_CASE("intents change nothing until the next frame starts", "[gallery]") {
   TempDir dir;
@@ -716,7 +788,7 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
     const auto cells = c.session().cells();
     std::vector<Eigen::VectorXd> xs;
     for (const auto& p : cells) xs.push_back(p.x);
-    const Eigen::MatrixXd d = c.space().perceptual_distance()(xs);
+    const Eigen::MatrixXd d = c.space().perception()->perceptual_distance()(xs);
     double closest = 1e300;
     for (Eigen::Index i = 0; i < d.rows(); ++i)
       for (Eigen::Index j = i + 1; j < d.cols(); ++j) closest = std::min(closest, d(i, j));
@@ -1625,7 +1697,7 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   CHECK(c.session().search().options().min_plane_length == Approx(at_default));
   // Every grid of a plane clicked through at that size shows nine cells that differ by at
   // least that much, pairwise (or the plane ends early, the click being the choice).
-  const auto distance = c.space().perceptual_distance();
+  const auto distance = c.space().perception()->perceptual_distance();
   REQUIRE(distance);
   double t = 2.0;
   int zoomed_grids = 0;
