@@ -62,6 +62,13 @@ class GalleryWindow {
     bool repeat;
   };
 
+  // The controller, the window and the view; false (said on stderr) if one cannot be made.
+  bool set_up();
+  // A benchmark's frame: what it measures of the frame about to start, its click queued.
+  FrameObserver::Request observed_frame_start();
+  // One frame: state changes, the cells, the UI, the present.
+  void frame(const FrameObserver::Request& request);
+  void after_render();
   bool create_window(int width, int height, bool fit_to_screen);
   void shutdown();
   void handle_keys();
@@ -92,7 +99,8 @@ class GalleryWindow {
 
   long frame_ = 0;
   bool first_grid_shown_ = false;
-  FrameObserver* observer_;  // options_.observer's, or none
+  bool previous_frame_zoomed_ = false;  // the last frame's state changes started a zoom
+  FrameObserver* observer_;             // options_.observer's, or none
   bool quit_ = false;
 };
 
@@ -249,7 +257,7 @@ WindowFacts GalleryWindow::facts() const {
   return f;
 }
 
-int GalleryWindow::run() {
+bool GalleryWindow::set_up() {
   UiPrefs prefs;
   std::string prefs_problem;
   if (options_.remember_ui && !options_.session_path.empty()) {
@@ -263,7 +271,7 @@ int GalleryWindow::run() {
         space_opener(*options_.catalogue), now());
   } catch (const std::exception& e) {
     std::cerr << "sequential-gallery: " << e.what() << "\n";
-    return 1;
+    return false;
   }
   if (options_.view) {
     prefs.view_preset = *options_.view == render::ViewPreset::kFront  ? 0
@@ -277,7 +285,7 @@ int GalleryWindow::run() {
     width = prefs.window_width > 0 ? prefs.window_width : 1600;
     height = prefs.window_height > 0 ? prefs.window_height : 1000;
   }
-  if (!create_window(width, height, fit_to_screen)) return 1;
+  if (!create_window(width, height, fit_to_screen)) return false;
   ViewOptions vo;
   vo.cell_size = options_.cell_size;
   vo.samples = options_.samples;
@@ -290,9 +298,11 @@ int GalleryWindow::run() {
   if (!prefs_path_.empty() && observer_ == nullptr) {
     prefs_saver_.emplace(prefs_path_, load_ui_prefs(prefs_path_));
   }
+  return true;
+}
 
-  bool previous_frame_zoomed = false;
-  const bool breakdown = observer_ != nullptr && observer_->wants_breakdown();
+int GalleryWindow::run() {
+  if (!set_up()) return 1;
   while (!glfwWindowShouldClose(window_) && !quit_) {
     const bool active = controller_->animating() || controller_->busy() || !first_grid_shown_ ||
                         observer_ != nullptr || options_.screenshot_after_frames >= 0 ||
@@ -304,86 +314,104 @@ int GalleryWindow::run() {
     }
     FrameObserver::Request request;
     if (observer_ != nullptr) {
-      request =
-          observer_->frame_started({Clock::now(), !controller_->animating() && !controller_->busy(),
-                                    first_grid_shown_, previous_frame_zoomed});
-      if (request.quit) {
-        observer_->report(facts());
-        break;
-      }
-      if (request.click) {
-        const int n = controller_->session().settings().grid_size;
-        controller_->queue(intent::ClickCell{std::min(request.click->first, n - 1),
-                                             std::min(request.click->second, n - 1)});
-      }
+      request = observed_frame_start();
+      if (request.quit) break;
     }
-    if (!pending_drop_.empty()) {
-      view_->open_dropped(*controller_, pending_drop_);
-      pending_drop_.clear();
-    }
-    // 1. State changes, all of them, before anything of this frame is drawn.
-    controller_->begin_frame(now());
-    previous_frame_zoomed = controller_->zooming();
-    // 2. Cells: prepared, uploaded and rendered into their framebuffers.
-    int win_w = 0, win_h = 0, fb_w = 0, fb_h = 0;
-    glfwGetWindowSize(window_, &win_w, &win_h);
-    glfwGetFramebufferSize(window_, &fb_w, &fb_h);
-    const float dpi = win_w > 0 ? static_cast<float>(fb_w) / static_cast<float>(win_w) : 1.0f;
-    const auto t0 = Clock::now();
-    view_->update_cells(*controller_, static_cast<float>(win_w), static_cast<float>(win_h), dpi);
-    const auto t1 = Clock::now();
-    if (request.orbit) view_->orbit(4.0f, 0.0f);
-    view_->draw_cells(*controller_);
-    // 3. The UI: reads state, queues intents for the next frame.
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    handle_keys();
-    view_->build(*controller_, frame_);
-    if (breakdown) glFinish();  // attribute GL time to the cells
-    const auto t2 = Clock::now();
-    if (previous_frame_zoomed && breakdown)
-      observer_->phases(ms_between(t0, t1), ms_between(t1, t2));
-    ImGui::Render();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, fb_w, fb_h);
-    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-    glClearColor(bg.x, bg.y, bg.z, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (breakdown) glFinish();
-    const auto t3 = Clock::now();
-    ++frame_;
-    if (!first_grid_shown_ && !controller_->displayed_cells().empty()) {
-      first_grid_shown_ = true;
-      glFinish();
-      const double launch = seconds_since(options_.launch_time);
-      if (observer_ != nullptr) observer_->first_grid(launch);
-      std::cerr << "first grid shown " << static_cast<int>(launch * 1000.0) << " ms after launch\n";
-    }
-    if (screenshot_requested_) {
-      screenshot_requested_ = false;
-      write_screenshot(options_.screenshot_path);
-    }
-    if (options_.screenshot_after_frames >= 0 && frame_ == options_.screenshot_after_frames &&
-        !options_.screenshot_path.empty()) {
-      write_screenshot(options_.screenshot_path);
-      if (options_.quit_after_screenshot) quit_ = true;
-    }
-    glfwSwapBuffers(window_);
-    if (observer_ != nullptr && observer_->waits_for_presented()) {
-      glFinish();  // the click's frame is on screen
-      observer_->frame_presented(Clock::now());
-    }
-    if (prefs_saver_) prefs_saver_->update(current_prefs(), now());
-    if (previous_frame_zoomed && breakdown) {
-      glFinish();
-      observer_->presented_phases(ms_between(t2, Clock::now()), ms_between(t3, Clock::now()));
-    }
+    frame(request);
   }
   controller_->save_now();
   if (prefs_saver_) prefs_saver_->flush(current_prefs());
   return 0;
+}
+
+FrameObserver::Request GalleryWindow::observed_frame_start() {
+  FrameObserver::Request request =
+      observer_->frame_started({Clock::now(), !controller_->animating() && !controller_->busy(),
+                                first_grid_shown_, previous_frame_zoomed_});
+  if (request.quit) {
+    observer_->report(facts());
+    return request;
+  }
+  if (request.click) {
+    const int n = controller_->session().settings().grid_size;
+    controller_->queue(intent::ClickCell{std::min(request.click->first, n - 1),
+                                         std::min(request.click->second, n - 1)});
+  }
+  return request;
+}
+
+void GalleryWindow::frame(const FrameObserver::Request& request) {
+  // A benchmark's breakdown of the frame (glFinish between the phases) slows every frame, so
+  // it is only done when asked for.
+  const bool breakdown = observer_ != nullptr && observer_->wants_breakdown();
+  if (!pending_drop_.empty()) {
+    view_->open_dropped(*controller_, pending_drop_);
+    pending_drop_.clear();
+  }
+  // 1. State changes, all of them, before anything of this frame is drawn.
+  controller_->begin_frame(now());
+  const bool zoomed = controller_->zooming();
+  previous_frame_zoomed_ = zoomed;
+  // 2. Cells: prepared, uploaded and rendered into their framebuffers.
+  int win_w = 0, win_h = 0, fb_w = 0, fb_h = 0;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  const float dpi = win_w > 0 ? static_cast<float>(fb_w) / static_cast<float>(win_w) : 1.0f;
+  const auto t0 = Clock::now();
+  view_->update_cells(*controller_, static_cast<float>(win_w), static_cast<float>(win_h), dpi);
+  const auto t1 = Clock::now();
+  if (request.orbit) view_->orbit(4.0f, 0.0f);
+  view_->draw_cells(*controller_);
+  // 3. The UI: reads state, queues intents for the next frame.
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  handle_keys();
+  view_->build(*controller_, frame_);
+  if (breakdown) glFinish();  // attribute GL time to the cells
+  const auto t2 = Clock::now();
+  if (zoomed && breakdown) observer_->phases(ms_between(t0, t1), ms_between(t1, t2));
+  ImGui::Render();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, fb_w, fb_h);
+  const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  glClearColor(bg.x, bg.y, bg.z, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (breakdown) glFinish();
+  const auto t3 = Clock::now();
+  ++frame_;
+  after_render();
+  glfwSwapBuffers(window_);
+  if (observer_ != nullptr && observer_->waits_for_presented()) {
+    glFinish();  // the click's frame is on screen
+    observer_->frame_presented(Clock::now());
+  }
+  if (prefs_saver_) prefs_saver_->update(current_prefs(), now());
+  if (zoomed && breakdown) {
+    glFinish();
+    observer_->presented_phases(ms_between(t2, Clock::now()), ms_between(t3, Clock::now()));
+  }
+}
+
+// The first grid's launch time, and the screenshots asked for (F12, or after N frames).
+void GalleryWindow::after_render() {
+  if (!first_grid_shown_ && !controller_->displayed_cells().empty()) {
+    first_grid_shown_ = true;
+    glFinish();
+    const double launch = seconds_since(options_.launch_time);
+    if (observer_ != nullptr) observer_->first_grid(launch);
+    std::cerr << "first grid shown " << static_cast<int>(launch * 1000.0) << " ms after launch\n";
+  }
+  if (screenshot_requested_) {
+    screenshot_requested_ = false;
+    write_screenshot(options_.screenshot_path);
+  }
+  if (options_.screenshot_after_frames >= 0 && frame_ == options_.screenshot_after_frames &&
+      !options_.screenshot_path.empty()) {
+    write_screenshot(options_.screenshot_path);
+    if (options_.quit_after_screenshot) quit_ = true;
+  }
 }
 
 }  // namespace
