@@ -33,6 +33,8 @@ class FrameObserver {
     bool settled = false;  // nothing animates and no optimizer runs
     bool first_grid_shown = false;
     bool previous_frame_zoomed = false;  // the last frame drew a zoom animation step
+    // The last frame's state changes handed a choice to the optimizer (a click ended the plane).
+    bool previous_frame_submitted = false;
   };
   struct Request {
     bool orbit = false;                        // turn the shared camera a step in this frame

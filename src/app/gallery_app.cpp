@@ -99,8 +99,9 @@ class GalleryWindow {
 
   long frame_ = 0;
   bool first_grid_shown_ = false;
-  bool previous_frame_zoomed_ = false;  // the last frame's state changes started a zoom
-  FrameObserver* observer_;             // options_.observer's, or none
+  bool previous_frame_zoomed_ = false;     // the last frame drew a zoom animation step
+  bool previous_frame_submitted_ = false;  // the last frame's click ended the plane
+  FrameObserver* observer_;                // options_.observer's, or none
   bool quit_ = false;
 };
 
@@ -325,9 +326,9 @@ int GalleryWindow::run() {
 }
 
 FrameObserver::Request GalleryWindow::observed_frame_start() {
-  FrameObserver::Request request =
-      observer_->frame_started({Clock::now(), !controller_->animating() && !controller_->busy(),
-                                first_grid_shown_, previous_frame_zoomed_});
+  FrameObserver::Request request = observer_->frame_started(
+      {Clock::now(), !controller_->animating() && !controller_->busy(), first_grid_shown_,
+       previous_frame_zoomed_, previous_frame_submitted_});
   if (request.quit) {
     observer_->report(facts());
     return request;
@@ -349,7 +350,9 @@ void GalleryWindow::frame(const FrameObserver::Request& request) {
     pending_drop_.clear();
   }
   // 1. State changes, all of them, before anything of this frame is drawn.
+  const bool was_busy = controller_->busy();
   controller_->begin_frame(now());
+  previous_frame_submitted_ = !was_busy && controller_->busy();
   const bool zoomed = controller_->zooming();
   previous_frame_zoomed_ = zoomed;
   // 2. Cells: prepared, uploaded and rendered into their framebuffers.

@@ -52,6 +52,8 @@ class WindowTiming final : public app::FrameObserver {
   double startup_rss_mb_ = 0.0;
   std::vector<double> orbit_ms_;
   std::vector<double> click_ms_;
+  bool click_to_sort_ = false;  // the last click's kind is known at the next frame's start
+  std::vector<double> zoom_click_ms_, ending_click_ms_;
   std::vector<double> animation_ms_;
   std::vector<double> prepare_ms_, cells_ms_, present_ms_, swap_ms_;
 };
