@@ -30,6 +30,12 @@ class WindowTiming final : public app::FrameObserver {
   void first_grid(double launch_seconds) override;
   void report(const app::WindowFacts& facts) const override;
 
+  // Each timed click's milliseconds, and those of clicks that zoomed in and that ended the
+  // plane (sorted at the frame after the click; the last click's kind may still be pending).
+  const std::vector<double>& click_ms() const { return click_ms_; }
+  const std::vector<double>& zoom_click_ms() const { return zoom_click_ms_; }
+  const std::vector<double>& ending_click_ms() const { return ending_click_ms_; }
+
   // The process's peak resident set so far, in MiB.
   static double peak_rss_mb();
 

@@ -18,6 +18,7 @@
 #include "app/space_catalogue.hpp"
 
 #include "app/worker.hpp"
+#include "bench/window_timing.hpp"
 #include "session_fixtures.hpp"
 
 namespace fs = std::filesystem;
@@ -961,4 +962,33 @@ TEST_CASE(
     writer.save(second, path);
   }  // closing writes what is queued, without the delay
   CHECK(app::read_session_file(path).clicks_on_plane() == 3);
+}
+
+TEST_CASE("bench-gui's timing sorts each click by what its frame did", "[app][bench]") {
+  using Clock = app::FrameObserver::Clock;
+  bench::WindowTiming timing({/*clicks=*/3, /*orbit_frames=*/0, /*breakdown=*/false});
+  const Clock::time_point t0 = Clock::now();
+  const auto at = [&](int ms) { return t0 + std::chrono::milliseconds(ms); };
+  timing.first_grid(0.1);
+  // frame_started(at, settled, first grid shown, previous frame zoomed, previous submitted)
+  auto r = timing.frame_started({at(0), true, true, false, false});
+  REQUIRE(r.click);  // a settled grid: the first click
+  REQUIRE(timing.waits_for_presented());
+  timing.frame_presented(at(20));
+  // Its frame zoomed in and handed nothing to the optimizer: a zoom click.
+  r = timing.frame_started({at(30), true, true, true, false});
+  REQUIRE(r.click);
+  timing.frame_presented(at(65));
+  // This one ended the plane.
+  r = timing.frame_started({at(70), true, true, true, true});
+  REQUIRE(r.click);
+  timing.frame_presented(at(80));
+  r = timing.frame_started({at(90), true, true, false, false});
+  CHECK(r.quit);  // three clicks done
+  REQUIRE(timing.click_ms().size() == 3);
+  REQUIRE(timing.zoom_click_ms().size() == 2);
+  REQUIRE(timing.ending_click_ms().size() == 1);
+  CHECK(timing.zoom_click_ms()[0] == Approx(20.0));
+  CHECK(timing.zoom_click_ms()[1] == Approx(10.0));
+  CHECK(timing.ending_click_ms()[0] == Approx(35.0));
 }
