@@ -123,7 +123,7 @@ TEST_CASE("npy: broken files give clear errors", "[npy]") {
 }
 
 TEST_CASE("npy: zero-width string dtypes are refused before any string is made", "[npy][errors]") {
-  // Issue 10, defect 7: '<U0' / '|S0' with a huge shape held no bytes, passed the size check
+  // Once, '<U0' / '|S0' with a huge shape held no bytes, passed the size check
   // and then allocated one string per element in to_strings() (length_error, terabytes).
   for (const char* descr : {"<U0", "|S0", ">U0"}) {
     INFO(descr);
