@@ -367,7 +367,7 @@ TEST_CASE("loader: the embedded default model", "[loader]") {
 
 TEST_CASE("loader: joint and file names that are not UTF-8 become valid UTF-8",
           "[loader][errors]") {
-  // Such names once made 'inspect' say usable and 'export' failed with nlohmann's
+  // Such names once made 'inspect' say usable while 'export' failed with nlohmann's
   // "[json.exception.type_error.316] invalid UTF-8 byte".
   fixtures::Cylinder c;
   c.joints = 5;
