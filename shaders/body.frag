@@ -4,6 +4,7 @@
 in vec3 v_view_position;
 in vec3 v_view_normal;
 in float v_height;
+in float v_tint;
 
 uniform vec3 u_albedo;
 uniform float u_floor_y;
@@ -53,7 +54,16 @@ void main() {
   s *= s;
   float specular = s * 0.12;
 
-  vec3 colour = u_albedo * light + vec3(specular);
+  // The eyes: white, and a dark iris where the tint passes 1.5 (a crisp edge between
+  // vertices of the two parts); glossier than skin. The white starts near 1, at the eyeball's
+  // own vertices: its neighbours are the lids', and half of the triangles between them
+  // showed white lids.
+  vec3 albedo = u_albedo;
+  if (v_tint > 0.9) {
+    albedo = v_tint > 1.5 ? vec3(0.16, 0.10, 0.07) : vec3(0.88, 0.86, 0.82);
+    specular *= 2.5;
+  }
+  vec3 colour = albedo * light + vec3(specular);
   colour = colour * (1.12 - 0.12 * colour);  // mild tone curve (brightens mid-tones)
   frag_colour = vec4(clamp(colour, 0.0, 1.0), 1.0);
 }

@@ -21,6 +21,7 @@
 
 #include "body/atomic_file.hpp"
 #include "body/bone_frames.hpp"
+#include "body/eye_parts.hpp"
 #include "body/joint_names.hpp"
 #include "body/mesh_normals.hpp"
 #include "body/posing.hpp"
@@ -316,34 +317,22 @@ std::optional<tinygltf::Value> vrm_look_at(const std::vector<std::string>& names
 }
 
 // The body's primitives, one per material, sharing the vertices and morph targets: skin on
-// the body; the eyeballs (faces that an eye joint alone moves, as in SMPL-X and the built-in
-// models) white, with a dark iris where they face forward (+Z). Metallic-roughness PBR
-// factors, no textures.
+// the body; the eyeballs white, with a dark iris where they face forward (body/eye_parts.hpp).
+// Metallic-roughness PBR factors, no textures.
 void add_primitives(tinygltf::Model& doc, BufferBuilder& bb, const Model& model,
-                    const Vertices& rest, const Vertices& joints, const SplitMesh& split,
-                    const tinygltf::Primitive& shared, tinygltf::Mesh& gmesh) {
-  std::vector<int> eyes;
-  for (const char* name : {"left_eye_smplhf", "right_eye_smplhf"}) {
-    const auto it = std::find(model.joint_names.begin(), model.joint_names.end(), name);
-    if (it != model.joint_names.end())
-      eyes.push_back(static_cast<int>(it - model.joint_names.begin()));
-  }
-  const float iris_cosine = std::cos(0.52f);         // a 12 mm iris on a 24 mm eyeball: 30 degrees
+                    const SplitMesh& split, const tinygltf::Primitive& shared,
+                    tinygltf::Mesh& gmesh) {
+  const std::vector<EyePart> parts = eye_parts(model);
   std::array<std::vector<std::uint32_t>, 3> groups;  // skin, eye white, iris
   for (Eigen::Index f = 0; f < split.faces.rows(); ++f) {
-    int group = 0;
-    for (const int e : eyes) {
-      bool all = true;
-      Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-      for (int c = 0; c < 3; ++c) {
-        const auto v = static_cast<Eigen::Index>(split.source[split.faces(f, c)]);
-        all = all && model.weights(v, e) >= 0.99f;
-        centre += rest.row(v).transpose() / 3.0f;
-      }
-      if (!all) continue;
-      const Eigen::Vector3f d = (centre - joints.row(e).transpose()).normalized();
-      group = d.z() > iris_cosine ? 2 : 1;
+    // A face of the eyeball (all three corners): the iris where most of its corners are.
+    int eye = 0, iris = 0;
+    for (int c = 0; c < 3; ++c) {
+      const EyePart p = parts[split.source[split.faces(f, c)]];
+      eye += p != EyePart::kSkin;
+      iris += p == EyePart::kIris;
     }
+    const int group = eye < 3 ? 0 : iris >= 2 ? 2 : 1;
     for (int c = 0; c < 3; ++c) groups[group].push_back(split.faces(f, c));
   }
   struct Look {
@@ -545,7 +534,7 @@ tinygltf::Model build_document(const Model& model, const Eigen::VectorXf& betas_
     extras["targetNames"] = tinygltf::Value(names);
     gmesh.extras = tinygltf::Value(extras);
   }
-  add_primitives(doc, bb, model, rest, joints, split, prim, gmesh);
+  add_primitives(doc, bb, model, split, prim, gmesh);
   doc.meshes.push_back(gmesh);
 
   // Skeleton: node 0 is the skinned mesh, nodes 1..J the joints, each rotated so its +Y

@@ -9,7 +9,7 @@
 namespace render {
 
 void MeshGpu::upload(const float* positions, const float* normals, int vertex_count,
-                     const std::uint32_t* indices, int index_count) {
+                     const std::uint32_t* indices, int index_count, const float* tints) {
   if (vertex_count <= 0 || index_count <= 0 || index_count % 3 != 0) {
     throw std::invalid_argument("MeshGpu::upload: empty mesh or index count not a multiple of 3");
   }
@@ -33,6 +33,18 @@ void MeshGpu::upload(const float* positions, const float* normals, int vertex_co
   glBufferData(GL_ARRAY_BUFFER, bytes, normals, GL_DYNAMIC_DRAW);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  if (tints != nullptr) {
+    tints_ = Buffer::create();
+    glBindBuffer(GL_ARRAY_BUFFER, tints_.get());
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(sizeof(float) * static_cast<size_t>(vertex_count)), tints,
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  } else {
+    tints_ = Buffer();
+    glDisableVertexAttribArray(2);  // the generic value, 0: skin
+  }
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                static_cast<GLsizeiptr>(sizeof(std::uint32_t) * static_cast<size_t>(index_count)),

@@ -1,4 +1,5 @@
-// A triangle mesh on the GPU: positions and normals (float3 each) plus a fixed index buffer.
+// A triangle mesh on the GPU: positions and normals (float3 each) plus a fixed index buffer,
+// and optionally a fixed tint per vertex (0 skin, 1 eye white, 2 iris: body::EyePart).
 // Positions/normals change every frame while bodies morph; update() rewrites them in place
 // with glBufferSubData, the topology never changes after upload().
 #pragma once
@@ -22,9 +23,10 @@ class MeshGpu {
  public:
   MeshGpu() = default;
 
-  // positions/normals: vertex_count * 3 floats; indices: index_count (triangles).
+  // positions/normals: vertex_count * 3 floats; indices: index_count (triangles); tints:
+  // vertex_count floats, or null for skin everywhere.
   void upload(const float* positions, const float* normals, int vertex_count,
-              const std::uint32_t* indices, int index_count);
+              const std::uint32_t* indices, int index_count, const float* tints = nullptr);
   // Same vertex count as upload(); the topology stays.
   void update(const float* positions, const float* normals, int vertex_count);
 
@@ -44,6 +46,7 @@ class MeshGpu {
   VertexArray vao_;
   Buffer positions_;
   Buffer normals_;
+  Buffer tints_;
   Buffer indices_;
   int vertex_count_ = 0;
   int index_count_ = 0;

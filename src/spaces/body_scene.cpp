@@ -1,5 +1,8 @@
 #include "spaces/body_scene.hpp"
 
+#include <algorithm>
+
+#include "body/eye_parts.hpp"
 #include "render/cell_framebuffer.hpp"
 
 namespace spaces {
@@ -14,11 +17,23 @@ body::BodyMesh body_from_betas(const body::Model& model, const Eigen::VectorXf& 
   return mesh;
 }
 
-void show_mesh(render::MeshGpu& gpu, const body::Model& model, const body::BodyMesh& mesh) {
+std::vector<float> eye_tints(const body::Model& model) {
+  const std::vector<body::EyePart> parts = body::eye_parts(model);
+  if (std::none_of(parts.begin(), parts.end(),
+                   [](body::EyePart p) { return p != body::EyePart::kSkin; }))
+    return {};
+  std::vector<float> tints(parts.size());
+  for (std::size_t v = 0; v < parts.size(); ++v) tints[v] = static_cast<float>(parts[v]);
+  return tints;
+}
+
+void show_mesh(render::MeshGpu& gpu, const body::Model& model, const body::BodyMesh& mesh,
+               const std::vector<float>& tints) {
   const int vertices = static_cast<int>(mesh.vertices.rows());
   if (gpu.empty() || gpu.vertex_count() != vertices) {
+    const bool tinted = tints.size() == static_cast<std::size_t>(vertices);
     gpu.upload(mesh.vertices.data(), mesh.normals.data(), vertices, model.faces.data(),
-               static_cast<int>(model.faces.size()));
+               static_cast<int>(model.faces.size()), tinted ? tints.data() : nullptr);
   } else {
     gpu.update(mesh.vertices.data(), mesh.normals.data(), vertices);
   }
@@ -33,7 +48,7 @@ std::vector<std::uint8_t> render_body_image(const body::Model& model, const body
                                             int samples) {
   render::BodyRenderer renderer;
   render::MeshGpu gpu;
-  show_mesh(gpu, model, mesh);
+  show_mesh(gpu, model, mesh, eye_tints(model));
   render::CellFramebuffer fbo(width, height, samples);
   fbo.begin();
   renderer.draw(gpu, camera, width, height, cell_style());

@@ -19,8 +19,14 @@ namespace spaces {
 body::BodyMesh body_at(const body::Model& model, const Eigen::VectorXd& x);
 body::BodyMesh body_from_betas(const body::Model& model, const Eigen::VectorXf& betas);
 
-// Uploads (first time) or updates (same vertex count) the GPU mesh.
-void show_mesh(render::MeshGpu& gpu, const body::Model& model, const body::BodyMesh& mesh);
+// The renderer's tint per vertex (body::EyePart as a float: the eyes' whites and irises), or
+// empty for a model without eyes.
+std::vector<float> eye_tints(const body::Model& model);
+
+// Uploads (first time, with `tints` when they are one per vertex) or updates (same vertex
+// count) the GPU mesh.
+void show_mesh(render::MeshGpu& gpu, const body::Model& model, const body::BodyMesh& mesh,
+               const std::vector<float>& tints = {});
 
 // Cell appearance shared by the grid, previews and the headless renderer.
 render::BodyStyle cell_style();

@@ -29,18 +29,12 @@ struct BodyCell : app::PreparedCell {
 
 class BodyContent : public app::CellContent {
  public:
-  BodyContent(std::shared_ptr<render::BodyRenderer> renderer, const body::Model& model)
-      : renderer_(std::move(renderer)), faces_(&model.faces) {}
+  BodyContent(std::shared_ptr<render::BodyRenderer> renderer, const body::Model& model,
+              const std::vector<float>& tints)
+      : renderer_(std::move(renderer)), model_(&model), tints_(&tints) {}
 
   void upload(const app::PreparedCell& cell) override {
-    const auto& b = static_cast<const BodyCell&>(cell);
-    const int vertices = static_cast<int>(b.mesh.vertices.rows());
-    if (gpu_.empty() || gpu_.vertex_count() != vertices) {
-      gpu_.upload(b.mesh.vertices.data(), b.mesh.normals.data(), vertices, faces_->data(),
-                  static_cast<int>(faces_->size()));
-    } else {
-      gpu_.update(b.mesh.vertices.data(), b.mesh.normals.data(), vertices);
-    }
+    show_mesh(gpu_, *model_, static_cast<const BodyCell&>(cell).mesh, *tints_);
   }
 
   void draw(int width, int height, const app::CellLook& look) override {
@@ -52,7 +46,9 @@ class BodyContent : public app::CellContent {
 
  private:
   std::shared_ptr<render::BodyRenderer> renderer_;
-  const body::Faces* faces_;  // the space outlives its cells' uploads (same model)
+  // The space outlives its cells' uploads (same model).
+  const body::Model* model_;
+  const std::vector<float>* tints_;
   render::MeshGpu gpu_;
 };
 
@@ -61,7 +57,8 @@ class BodyContent : public app::CellContent {
 BodySpace::BodySpace(body::Model model, std::string source)
     : model_(std::move(model)),
       source_(std::move(source)),
-      distance_(std::make_shared<const body::ShapeDistance>(model_)) {}
+      distance_(std::make_shared<const body::ShapeDistance>(model_)),
+      eye_tints_(eye_tints(model_)) {}
 
 std::vector<std::string> BodySpace::measurement_names() const {
   std::vector<std::string> names;
@@ -327,7 +324,7 @@ std::shared_ptr<const app::PreparedCell> BodySpace::prepare(const Eigen::VectorX
 
 std::unique_ptr<app::CellContent> BodySpace::make_content() {
   if (!renderer_) renderer_ = std::make_shared<render::BodyRenderer>();
-  return std::make_unique<BodyContent>(renderer_, model_);
+  return std::make_unique<BodyContent>(renderer_, model_, eye_tints_);
 }
 
 void BodySpace::draw_inspector(const app::PreparedCell& shown, const char* shown_label,

@@ -95,6 +95,32 @@ TEST_CASE("a body renders into a multisampled cell framebuffer", "[render]") {
   }
 }
 
+TEST_CASE("vertex tints colour the eyes: white, a dark iris, skin where none are given",
+          "[render]") {
+  context();
+  const auto mesh = render_test::make_ellipsoid(0.25f, 0.85f, 0.15f);
+  render::BodyRenderer renderer;
+  render::Camera camera;
+  render::CellFramebuffer fbo(100, 100, 0);
+  const auto centre_with = [&](const float* tints) {
+    render::MeshGpu gpu;
+    gpu.upload(mesh.positions.data(), mesh.normals.data(), mesh.vertex_count(), mesh.indices.data(),
+               static_cast<int>(mesh.indices.size()), tints);
+    fbo.begin();
+    renderer.draw(gpu, camera, 100, 100);
+    fbo.end();
+    return pixel(fbo.read_pixels(), 100, 50, 50);
+  };
+  const std::vector<float> skin(static_cast<std::size_t>(mesh.vertex_count()), 0.0f);
+  const std::vector<float> white(skin.size(), 1.0f), iris(skin.size(), 2.0f);
+  const Rgb plain = centre_with(nullptr), as_skin = centre_with(skin.data());
+  const Rgb as_white = centre_with(white.data()), as_iris = centre_with(iris.data());
+  CHECK(distance(plain, as_skin) <= 3);  // no tints = skin
+  // The white is lighter and greyer than skin (more blue), the iris far darker.
+  CHECK(as_white.b > as_skin.b + 20);
+  CHECK(as_iris.r + as_iris.g + as_iris.b < (as_skin.r + as_skin.g + as_skin.b) / 2);
+}
+
 TEST_CASE("back-face culling follows the mesh's winding", "[render]") {
   context();
   auto mesh = render_test::make_ellipsoid(0.25f, 0.85f, 0.15f);
