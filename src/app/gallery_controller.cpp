@@ -185,9 +185,9 @@ std::string GalleryController::resume_description() const {
   if (!pending_resume_) return "";
   const auto& s = pending_resume_->settings();
   // The space's description already counts its dimensions ("..., 10 components").
-  const std::string what = pending_resume_space_
-                               ? pending_resume_space_->description()
-                               : s.space + ", " + std::to_string(s.components) + " dimensions";
+  const std::string what =
+      pending_resume_space_ ? pending_resume_space_->description()
+                            : resume_kind() + ", " + std::to_string(s.components) + " dimensions";
   const int planes = pending_resume_->planes_done();
   const int clicks = pending_resume_->clicks_on_plane();
   char text[160];
@@ -197,9 +197,16 @@ std::string GalleryController::resume_description() const {
   return what + text;
 }
 
+std::string GalleryController::resume_kind() const {
+  if (!pending_resume_) return "";
+  const std::string& kind = pending_resume_->settings().space;
+  return kind.empty() && options_.catalogue != nullptr ? options_.catalogue->default_kind().name
+                                                       : kind;
+}
+
 std::string GalleryController::asked_kind_instead() const {
   if (!pending_resume_ || !options_.space_chosen) return "";
-  return pending_resume_->settings().space != options_.space.kind ? options_.space.kind : "";
+  return resume_kind() != options_.space.kind ? options_.space.kind : "";
 }
 
 void GalleryController::begin_frame(double now_seconds) {

@@ -153,6 +153,8 @@ class GalleryController {
   // session waits), else empty: the question then offers that search instead of a plain
   // "Start new".
   std::string asked_kind_instead() const;
+  // The kind of the resumable session ("body"; a file that names none: the default kind).
+  std::string resume_kind() const;
 
   // The optimizer is due or running.
   bool busy() const { return session_->submission_pending() || point_job_.has_value(); }

@@ -364,7 +364,7 @@ void GalleryView::draw_questions(PanelContext& ctx) {
       const std::string instead = c.asked_kind_instead();
       if (!instead.empty()) {
         ImGui::Text("You asked for a %s search: start it, or resume the %s search?",
-                    instead.c_str(), c.resume_candidate()->settings().space.c_str());
+                    instead.c_str(), c.resume_kind().c_str());
       }
       if (elsewhere) {
         ImGui::TextUnformatted(
@@ -373,9 +373,7 @@ void GalleryView::draw_questions(PanelContext& ctx) {
       }
       const std::string resume_label =
           elsewhere ? "View read-only"
-                    : (instead.empty()
-                           ? "Resume"
-                           : "Resume the " + c.resume_candidate()->settings().space + " search");
+                    : (instead.empty() ? "Resume" : "Resume the " + c.resume_kind() + " search");
       if (ImGui::Button(resume_label.c_str(), ImVec2(instead.empty() ? 160 : 220, 0))) {
         c.queue(intent::Resume{});
         ImGui::CloseCurrentPopup();

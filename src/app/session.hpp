@@ -20,11 +20,11 @@
 namespace app {
 
 struct SessionSettings {
-  std::string space = "body";  // the design space's kind (see app/design_space.hpp)
-  std::string model_path;      // the space's source file; empty = its built-in default
-  int components = 10;         // search dimensions (a body's shape components)
-  int grid_size = 3;           // 3 or 5
-  int zoom_levels = 4;         // clicks per plane
+  std::string space;       // the design space's kind (app/space_catalogue.hpp); empty: the default
+  std::string model_path;  // the space's source file; empty = its built-in default
+  int components = 10;     // search dimensions (a body's shape components)
+  int grid_size = 3;       // 3 or 5
+  int zoom_levels = 4;     // clicks per plane
   std::uint64_t seed = 1;
 };
 

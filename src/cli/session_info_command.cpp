@@ -41,9 +41,11 @@ int run(int argc, char** argv) {
   }
   const auto& s = session->settings();
   const auto& search = session->search();
+  // A session that names no kind is of the default kind, as the window opens it.
+  const std::string kind = s.space.empty() ? spaces::catalogue().default_kind().name : s.space;
   std::cout << "file: " << path << "\n"
             << "version: 1\n"
-            << "space: " << s.space << "\n"
+            << "space: " << kind << "\n"
             << "model: " << (s.model_path.empty() ? "(built-in default)" : s.model_path) << "\n"
             << "components: " << s.components << "\n"
             << "grid: " << s.grid_size << "x" << s.grid_size << ", " << s.zoom_levels
@@ -62,7 +64,7 @@ int run(int argc, char** argv) {
   // The window resumes a session only if its design space opens (the body model or the
   // photo) with the same number of dimensions.
   try {
-    const auto space = spaces::open_space(app::SpaceSettings{s.space, s.model_path, s.components});
+    const auto space = spaces::open_space(app::SpaceSettings{kind, s.model_path, s.components});
     if (space->dimensions() != s.components) {
       throw std::runtime_error("the space now has " + std::to_string(space->dimensions()) +
                                " dimensions, the session " + std::to_string(s.components));
@@ -105,7 +107,7 @@ int run(int argc, char** argv) {
       }
     }
   } catch (const std::exception& e) {
-    std::cout << "usable: no: " << path << ": cannot open its " << s.space << " space: " << e.what()
+    std::cout << "usable: no: " << path << ": cannot open its " << kind << " space: " << e.what()
               << "\n";
     return 1;
   }

@@ -244,6 +244,7 @@ int run_body_simulation(const ArgParser& args) {
       return distance.max_to_betas_mm(xs, target);
     };
     app::SessionSettings settings;
+    settings.space = "body";  // the benchmark's function (--function body), not a default
     settings.components = k;
     settings.grid_size = grid;
     settings.zoom_levels = levels;

@@ -1612,6 +1612,27 @@ TEST_CASE("asking for a photo search while a body session waits offers that sear
   CHECK(d.asked_kind_instead().empty());
 }
 
+TEST_CASE("a session that names no kind is one of the catalogue's default kind", "[gallery]") {
+  TempDir dir;
+  const fs::path session = dir.path / "s.json";
+  {
+    app::SessionSettings s;  // no kind: the default one
+    s.components = 10;
+    REQUIRE(s.space.empty());
+    app::save_session(app::Session(s), session);
+  }
+  auto o = options(session, "body");
+  o.resume = app::ResumePolicy::kAsk;
+  o.space_chosen = true;  // --space body, the default kind
+  GalleryController c(o, &spaces::open_space, 0.0);
+  REQUIRE(c.resume_candidate() != nullptr);
+  CHECK(c.resume_kind() == spaces::catalogue().default_kind().name);
+  CHECK(c.asked_kind_instead().empty());  // the same kind: a plain Resume
+  c.queue(intent::Resume{});
+  c.begin_frame(0.1);
+  CHECK(c.space().settings().kind == spaces::catalogue().default_kind().name);
+}
+
 TEST_CASE("autosave on its own thread: nothing lost, nothing written over",
           "[gallery][background-save]") {
   TempDir dir;
