@@ -236,7 +236,7 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
   }
   {
     // The limbs' correctives are the template's; the shoulders', hips' and head's are fitted
-    // again on this model's mean body, whose arms and neck are not the template's.
+    // on this model's mean body, whose arms and neck are not the template's.
     Eigen::MatrixXf posedirs = tpl.posedirs;
     {
       std::vector<Vec3> rest(V);
@@ -244,7 +244,8 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
       SmplxRig rig = tpl.rig;
       for (int j = 0; j < rig.size(); ++j)
         rig.joints[j] = out.joints.row(j).transpose().cast<double>();
-      refit_rotation_share_correctives(rest, rig, tpl.rig_weights, threads, posedirs);
+      fit_rotation_share_correctives(rest, rig, tpl.rig_weights, threads, posedirs,
+                                     &out.pose_correctives);
     }
     // (V, 3, P) in C order, as SMPL stores posedirs: element [v][a][p] = posedirs(3v + a, p).
     const Eigen::Index Pc = posedirs.cols();

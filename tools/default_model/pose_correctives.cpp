@@ -195,10 +195,6 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
   return fit;
 }
 
-}  // namespace
-
-namespace {
-
 // A coefficient rounded to a multiple of 2^-17 m (7.6 micrometres, under the 1e-5 within which
 // a regenerated model must match the committed one): the offsets change by at most 0.1 mm, and
 // the float's low mantissa bits become zeros, which the .npz's deflate packs three times
@@ -263,22 +259,20 @@ Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& 
   const PoseCorrectiveReport limbs =
       fit_joints(template_joints(), PosedTarget::kTemplate, mesh.vertices, rig, weights, threads,
                  &mannequin, posedirs);
-  const PoseCorrectiveReport shared =
-      fit_joints(rotation_share_joints(), PosedTarget::kRotationShare, mesh.vertices, rig, weights,
-                 threads, nullptr, posedirs);
-  if (report) {
-    *report = limbs;
-    report->rotation_share_joints = shared.joints;
-    report->rotation_share_poses = shared.poses;
-  }
+  if (report) *report = limbs;
   return posedirs;
 }
 
-void refit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,
-                                      const Eigen::MatrixXd& weights, int threads,
-                                      Eigen::MatrixXf& posedirs) {
-  fit_joints(rotation_share_joints(), PosedTarget::kRotationShare, rest, rig, weights, threads,
-             nullptr, posedirs);
+void fit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,
+                                    const Eigen::MatrixXd& weights, int threads,
+                                    Eigen::MatrixXf& posedirs, PoseCorrectiveReport* report) {
+  const PoseCorrectiveReport shared =
+      fit_joints(rotation_share_joints(), PosedTarget::kRotationShare, rest, rig, weights, threads,
+                 nullptr, posedirs);
+  if (report) {
+    report->rotation_share_joints = shared.joints;
+    report->rotation_share_poses = shared.poses;
+  }
 }
 
 std::string PoseCorrectiveReport::describe() const {
