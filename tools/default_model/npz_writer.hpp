@@ -3,6 +3,7 @@
 // arrays and the zlib version).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -16,6 +17,13 @@ struct NpyArray {
   std::vector<std::size_t> shape;
   std::vector<std::uint8_t> data;  // C order, little endian
 };
+
+// `value` rounded to a multiple of 2^-fraction_bits. Arrays of metres rounded so (far below
+// the 1e-5 within which a regenerated model must match the committed one) have zeros in their
+// floats' low mantissa bits, which the .npz's deflate packs much tighter than noise.
+inline double rounded_to_binary_step(double value, int fraction_bits) {
+  return std::ldexp(std::round(std::ldexp(value, fraction_bits)), -fraction_bits);
+}
 
 std::vector<std::uint8_t> npy_bytes(const NpyArray& array);
 std::vector<std::uint8_t> npz_bytes(const std::vector<NpyArray>& arrays);

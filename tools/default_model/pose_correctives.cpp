@@ -9,6 +9,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "npz_writer.hpp"
+
 namespace default_model {
 
 namespace {
@@ -195,14 +197,10 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
   return fit;
 }
 
-// A coefficient rounded to a multiple of 2^-17 m (7.6 micrometres, under the 1e-5 within which
-// a regenerated model must match the committed one): the offsets change by at most 0.1 mm, and
-// the float's low mantissa bits become zeros, which the .npz's deflate packs three times
-// tighter (posedirs took 2 MB of each 6.3 MB file unrounded).
-double quantised(double c) {
-  constexpr double step = 1.0 / 131072.0;
-  return std::round(c / step) * step;
-}
+// A coefficient rounded to a multiple of 2^-17 m (7.6 micrometres): the offsets change by at
+// most 0.1 mm, and deflate packs posedirs three times tighter (it took 2 MB of each 6.3 MB
+// file unrounded).
+double quantised(double c) { return rounded_to_binary_step(c, 17); }
 
 // Fits the given joints' columns of posedirs (3V x 9 (J - 1)) on the rest body P, in parallel.
 PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind,
