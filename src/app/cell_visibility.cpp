@@ -6,6 +6,11 @@
 
 namespace app {
 
+double cell_frame_scale(double tallest_m) {
+  if (!(tallest_m > 0.0)) return 1.0;
+  return std::clamp((tallest_m + kCellHeadroomM) / kCellFrameTopM, 0.5, 1.0);
+}
+
 double millimetres_per_pixel(double cell_px) {
   return 1000.0 * kCellFrameHeightM / std::max(1.0, cell_px);
 }

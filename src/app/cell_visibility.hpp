@@ -1,8 +1,11 @@
-// What a person can see of a body grid cell: the body cells' camera shows a frame of a fixed
-// height at the body, so a cell of N pixels shows frame / N millimetres per pixel, and two
-// bodies whose outlines differ by less than a couple of pixels look alike. The window takes
-// its look-alike threshold from the cell size it really shows, and the body benchmark's
-// pixel person (`simulate --function body --jnd-px D --cell-px N`) uses the same rule.
+// What a person can see of a body grid cell: the body cells' default camera shows a frame of a
+// fixed height at the body, so a cell of N pixels shows frame / N millimetres per pixel, and
+// two bodies whose outlines differ by less than a couple of pixels look alike. A grid is
+// framed to its tallest body (cell_frame_scale), which shows its differences 1/s larger; the
+// body space's perceptual distance reports them as they look at the default frame, so one
+// threshold per cell size holds for every grid. The window takes its look-alike threshold from
+// the cell size it really shows, and the body benchmark's pixel person (`simulate --function
+// body --jnd-px D --cell-px N`) uses the same rule and the same framing.
 #pragma once
 
 namespace app {
@@ -16,6 +19,20 @@ constexpr int kDefaultCellPx = 210;
 
 // The difference, in pixels, under which a person takes two cells for the same body.
 constexpr double kDefaultJndPx = 2.0;
+
+// The highest point (m above the floor) the default body camera shows at the body: looking 6
+// degrees down from 4 m at 0.98 m, the top of its 30 degree view is 9 degrees above level,
+// 1.398 + 3.978 * tan(9 degrees) (render_tests check the match).
+constexpr double kCellFrameTopM = 2.028;
+
+// Room left above the tallest body of a grid framed to it (m).
+constexpr double kCellHeadroomM = 0.05;
+
+// How far a grid whose tallest body stands `tallest_m` high is framed in: the default camera
+// scaled by s about the floor point under the body (render::Camera::scaled_about_floor) shows
+// that body 1/s larger, with kCellHeadroomM above its head. In [0.5, 1]: a grid with a body
+// over 1.98 m keeps the default framing; a height that is not a positive number gives 1.
+double cell_frame_scale(double tallest_m);
 
 // Millimetres of body per pixel in a cell `cell_px` high (NaN-free: cell_px is clamped to 1).
 double millimetres_per_pixel(double cell_px);

@@ -84,7 +84,12 @@ struct MeasurementPanelRequest {
 class SpacePerception {
  public:
   virtual ~SpacePerception() = default;
+  // The distance as the grid shows it: a space that frames each grid (frame_scale) reports
+  // a grid's differences as they look at its default framing.
   virtual PairwiseDistance perceptual_distance() const = 0;
+  // How a grid of these points is framed: 1 = the cells' default camera, s < 1 = the camera
+  // scaled by s about the floor (render::Camera::scaled_about_floor), everything 1/s larger.
+  virtual double frame_scale(const std::vector<Eigen::VectorXd>& xs) const = 0;
   // How the zoom adapts when the cells are `cell_px` pixels high (0: not known yet): the
   // threshold under which two cells look alike follows from what a pixel shows.
   virtual ZoomPolicy zoom_policy(int cell_px) const = 0;

@@ -108,9 +108,17 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
 
   const auto& points = c.displayed_cells();
   if (cells_.size() != points.size()) cells_.resize(points.size());
+  std::vector<Eigen::VectorXd> xs;
   for (std::size_t i = 0; i < points.size(); ++i) {
     cells_[i].set_point(space, points[i].x, false);
     cells_[i].clamped = points[i].clamped;
+    xs.push_back(points[i].x);
+  }
+  const SpacePerception* perception = space.perception();
+  const auto scale = static_cast<float>(perception != nullptr ? perception->frame_scale(xs) : 1.0);
+  if (std::abs(scale - grid_frame_scale_) > 1e-4f) {
+    grid_frame_scale_ = scale;
+    ++grid_frame_version_;
   }
   const Session& s = c.session();
   const auto& sliders = sliders_.point();
@@ -141,9 +149,15 @@ void GalleryView::draw_cells(GalleryController& c) {
   // sample); the settled grid is drawn again with full antialiasing.
   const bool fast = c.animating() || grid_.dragging() || orbiting_;
   bool grid_drew = false;
+  const render::Camera grid_camera = camera_.scaled_about_floor(grid_frame_scale_);
+  CellLook grid_look = look;
+  if (look.camera != nullptr) grid_look.camera = &grid_camera;
+  // Both counters only grow, so their sum changes whenever either does.
+  const int grid_camera_version = camera_version_ + grid_frame_version_;
   for (auto& cell : cells_) {
-    grid_drew |= cell.draw(look, camera_version_, cell_pixels_, cell_pixels_, options_.samples,
-                           fast, options_.animation_scale, options_.animation_samples > 0);
+    grid_drew |=
+        cell.draw(grid_look, grid_camera_version, cell_pixels_, cell_pixels_, options_.samples,
+                  fast, options_.animation_scale, options_.animation_samples > 0);
   }
   const int pwx = static_cast<int>(std::lround(dpi * pw));
   const int phx = static_cast<int>(std::lround(dpi * ph));

@@ -119,6 +119,11 @@ class GalleryView {
   render::Camera camera_;
   int active_preset_ = 0;  // -1 after a free orbit
   int camera_version_ = 0;
+  // The grid is framed to its tallest body (SpacePerception::frame_scale): the cells see
+  // camera_ scaled by this; the previews keep camera_, so the best and the start compare by
+  // height. The version counts its changes (the cells redraw on camera or framing changes).
+  float grid_frame_scale_ = 1.0f;
+  int grid_frame_version_ = 0;
   bool orbiting_ = false;  // orbit() was called since the last build() (benchmark frames)
 
   std::vector<CellView> cells_;

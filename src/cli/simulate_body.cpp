@@ -17,6 +17,7 @@
 #include "body/measurements.hpp"
 #include "body/model_loader.hpp"
 #include "body/shape_distance.hpp"
+#include "body/standing_height.hpp"
 #include "cli/simulate_common.hpp"
 #include "spaces/body_holds.hpp"
 #include "spaces/body_space.hpp"
@@ -199,7 +200,9 @@ int run_body_simulation(const ArgParser& args) {
 
   const body::Model model = load_benchmark_model(args, components);
   const int k = model.component_count();
-  const body::ShapeDistance distance(model);
+  const auto shared_distance = std::make_shared<const body::ShapeDistance>(model);
+  const body::ShapeDistance& distance = *shared_distance;
+  const auto heights = std::make_shared<const body::StandingHeights>(model);
   Eigen::VectorXf fixed_target;
   if (args.has("target-betas")) {
     const auto b = args.get_doubles("target-betas");
@@ -225,9 +228,13 @@ int run_body_simulation(const ArgParser& args) {
   }
   if (!hold_names.empty()) hold_model = std::make_shared<const body::Model>(model);
   const auto clock = std::make_shared<HoldClock>();
-  const app::PairwiseDistance pairwise = [&distance](const std::vector<Eigen::VectorXd>& xs) {
-    return distance.pairwise_max_mm(xs);
-  };
+  // The pixel person sees the grids as the window shows them, each framed to its tallest body
+  // (spaces::framed_body_distance); the mm person's threshold is in millimetres of the body.
+  const app::PairwiseDistance pairwise =
+      pixel_person ? spaces::framed_body_distance(shared_distance, heights)
+                   : app::PairwiseDistance([&distance](const std::vector<Eigen::VectorXd>& xs) {
+                       return distance.pairwise_max_mm(xs);
+                     });
 
   SimulationResults results(iterations, seed, true);
   for (int trial = 0; trial < trials; ++trial) {
@@ -239,9 +246,13 @@ int run_body_simulation(const ArgParser& args) {
     };
     // The pixel person sees how far a cell is from the body in mind as the window measures
     // look-alikes: its largest visible shift (2 px of a 210 px cell is 20 mm of the body's
-    // outline, however little of the body moves). The mm person judges by the RMS distance.
+    // outline at the default framing, however little of the body moves), enlarged as the grid
+    // is framed. The mm person judges by the RMS distance.
     const bench::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {
-      return distance.max_to_betas_mm(xs, target);
+      std::vector<double> shift = distance.max_to_betas_mm(xs, target);
+      const double scale = spaces::body_grid_frame_scale(*heights, xs);
+      for (double& d : shift) d /= scale;
+      return shift;
     };
     app::SessionSettings settings;
     settings.space = "body";  // the benchmark's function (--function body), not a default

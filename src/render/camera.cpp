@@ -48,6 +48,14 @@ void Camera::orbit(float dx_pixels, float dy_pixels) {
   pitch_degrees = std::clamp(pitch_degrees + 0.3f * dy_pixels, -60.0f, 60.0f);
 }
 
+Camera Camera::scaled_about_floor(float s) const {
+  s = std::clamp(std::isfinite(s) ? s : 1.0f, 0.1f, 10.0f);
+  Camera scaled = *this;
+  scaled.distance = distance * s;
+  scaled.target = target * s;
+  return scaled;
+}
+
 glm::vec3 Camera::eye() const {
   const float yaw = glm::radians(yaw_degrees);
   const float pitch = glm::radians(pitch_degrees);

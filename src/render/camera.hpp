@@ -1,5 +1,6 @@
 // The one orbit camera every grid cell shares, so body heights compare at a glance: it looks at
-// a fixed point at mid-body height from a fixed distance and never reframes per body.
+// a fixed point at mid-body height from a fixed distance and never reframes per body (a grid
+// as a whole is framed to its tallest body with scaled_about_floor).
 #pragma once
 
 #include <optional>
@@ -26,6 +27,11 @@ struct Camera {
   void set_preset(ViewPreset preset);
   // Drag by (dx, dy) pixels: yaw follows dx, pitch follows dy (clamped to +-60 degrees).
   void orbit(float dx_pixels, float dy_pixels);
+
+  // The same view with the target and the eye moved s times as far from the floor point under
+  // the body (the origin): everything appears 1/s larger, the floor stays where it was on
+  // screen and the orbit angles are kept. s is clamped to [0.1, 10].
+  Camera scaled_about_floor(float s) const;
 
   glm::vec3 eye() const;
   glm::mat4 view() const;

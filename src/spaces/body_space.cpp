@@ -58,6 +58,7 @@ BodySpace::BodySpace(body::Model model, std::string source)
     : model_(std::move(model)),
       source_(std::move(source)),
       distance_(std::make_shared<const body::ShapeDistance>(model_)),
+      heights_(std::make_shared<const body::StandingHeights>(model_)),
       eye_tints_(eye_tints(model_)) {}
 
 std::vector<std::string> BodySpace::measurement_names() const {
@@ -94,12 +95,27 @@ app::TargetSolve BodySpace::solve_targets(const std::vector<std::string>& texts,
   return {result.x, result.reached, result.message};
 }
 
-app::PairwiseDistance BodySpace::perceptual_distance() const {
+double body_grid_frame_scale(const body::StandingHeights& heights,
+                             const std::vector<Eigen::VectorXd>& xs) {
+  return app::cell_frame_scale(heights.tallest_m(xs));
+}
+
+app::PairwiseDistance framed_body_distance(std::shared_ptr<const body::ShapeDistance> distance,
+                                           std::shared_ptr<const body::StandingHeights> heights) {
   // The hook holds the distance itself, so a session copied into the redo stack stays valid
   // after the space is replaced.
-  return [distance = distance_](const std::vector<Eigen::VectorXd>& xs) {
-    return distance->pairwise_max_mm(xs);
+  return [distance = std::move(distance),
+          heights = std::move(heights)](const std::vector<Eigen::VectorXd>& xs) {
+    return Eigen::MatrixXd(distance->pairwise_max_mm(xs) / body_grid_frame_scale(*heights, xs));
   };
+}
+
+app::PairwiseDistance BodySpace::perceptual_distance() const {
+  return framed_body_distance(distance_, heights_);
+}
+
+double BodySpace::frame_scale(const std::vector<Eigen::VectorXd>& xs) const {
+  return body_grid_frame_scale(*heights_, xs);
 }
 
 app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {

@@ -41,6 +41,8 @@ class PhotoSpace : public app::DesignSpace, public app::SpacePerception {
   // app::SpacePerception. Mean CIEDE2000 between the edited pictures (spaces/photo_perception.hpp),
   // in the slots where a body space gives millimetres.
   app::PairwiseDistance perceptual_distance() const override;
+  // A picture fills its cell whatever the edit.
+  double frame_scale(const std::vector<Eigen::VectorXd>& /*xs*/) const override { return 1.0; }
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   double min_plane_length(int /*cell_px*/) const override { return kPhotoMinPlaneDeltaE; }

@@ -23,9 +23,12 @@
 #include "app/gallery_view.hpp"
 #include "app/session_store.hpp"
 #include "app/ui_prefs.hpp"
+#include "body/shape_distance.hpp"
+#include "body/standing_height.hpp"
 #include "common/first_difference.hpp"
 #include "render/headless_context.hpp"
 #include "render/photo_renderer.hpp"
+#include "spaces/body_space.hpp"
 #include "spaces/photo_enhancement.hpp"
 #include "spaces/photo_image.hpp"
 #include "spaces/photo_perception.hpp"
@@ -1701,6 +1704,47 @@ TEST_CASE("typed targets and the panel's units survive a relaunch", "[gallery][g
   const app::UiPrefs junk = app::load_ui_prefs(path);
   CHECK(junk.typed_targets.size() == 1);
   CHECK(junk.typed_targets.count("hips") == 1);
+}
+
+TEST_CASE("a body grid is framed to its tallest body, and its cells compare as they look",
+          "[gallery][zoom]") {
+  // The rule: headroom above the tallest body, never wider than the default.
+  CHECK(app::cell_frame_scale(1.70) == Approx((1.70 + app::kCellHeadroomM) / app::kCellFrameTopM));
+  CHECK(app::cell_frame_scale(2.2) == 1.0);
+  CHECK(app::cell_frame_scale(0.3) == 0.5);
+  CHECK(app::cell_frame_scale(std::nan("")) == 1.0);
+  CHECK(app::cell_frame_scale(-1.0) == 1.0);
+  const auto space = spaces::open_space({"body", "neutral", 10});
+  const app::SpacePerception* perception = space->perception();
+  REQUIRE(perception != nullptr);
+  const body::Model& model = dynamic_cast<const spaces::BodySpace&>(*space).model();
+  const body::StandingHeights heights(model);
+  const body::ShapeDistance raw(model);
+  // The mean body and two that differ in the most visible component.
+  std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
+  xs[1][0] = 0.4;
+  xs[2][0] = 0.6;
+  const double scale = perception->frame_scale(xs);
+  CHECK(scale == Approx(app::cell_frame_scale(heights.tallest_m(xs))));
+  // A grid of people about 1.7 m tall is shown about 15 % larger than a 2 m one.
+  CHECK(scale > 0.75);
+  CHECK(scale < 0.97);
+  // The distance the zoom and the look-alike test use is what the framed grid shows: each
+  // pair's largest vertex distance enlarged by the framing.
+  const Eigen::MatrixXd seen = perception->perceptual_distance()(xs);
+  const Eigen::MatrixXd body_mm = raw.pairwise_max_mm(xs);
+  REQUIRE(seen.rows() == 3);
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      CHECK(seen(i, j) == Approx(body_mm(i, j) / scale).epsilon(1e-9).margin(1e-9));
+    }
+  }
+  // A grid with a tall body in it keeps (nearly) the default framing; never wider.
+  std::vector<Eigen::VectorXd> tall = xs;
+  tall.emplace_back(Eigen::VectorXd::Constant(10, 0.5));
+  tall.back()[0] = 1.0;
+  CHECK(perception->frame_scale(tall) > scale);
+  CHECK(perception->frame_scale(tall) <= 1.0);
 }
 
 TEST_CASE("the look-alike threshold follows the cells' size on screen", "[gallery][zoom]") {

@@ -1,6 +1,8 @@
 // Renderer tests on a headless EGL context with a stand-in mesh (no body model needed).
 #include <catch2/catch.hpp>
 
+#include <glm/glm.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -206,4 +208,39 @@ TEST_CASE("the body cells' frame height the look-alike threshold assumes is the 
   const double frame =
       2.0 * camera.distance * std::tan(0.5 * camera.fov_y_degrees * 3.14159265358979323846 / 180.0);
   CHECK(frame == Approx(app::kCellFrameHeightM).epsilon(1e-6));
+}
+
+namespace {
+
+// Where a world point lands on a square cell of `camera`, in normalised device coordinates.
+glm::vec3 on_cell(const render::Camera& camera, const glm::vec3& p) {
+  const glm::vec4 clip = camera.projection(1.0f) * camera.view() * glm::vec4(p, 1.0f);
+  return glm::vec3(clip) / clip.w;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a grid framed to its tallest body: the default top, and the camera scaled about the "
+    "floor",
+    "[render][camera]") {
+  const render::Camera camera;
+  // The highest point the default front view shows at the body is the top of the cell.
+  CHECK(on_cell(camera, glm::vec3(0.0f, static_cast<float>(app::kCellFrameTopM), 0.0f)).y ==
+        Approx(1.0).margin(2e-3));
+  // Scaled by s about the floor, a body s times as tall lands where the full-size one did: a
+  // grid of shorter bodies fills its cells as a 2 m grid does by default.
+  const float s = 0.85f;
+  const render::Camera framed = camera.scaled_about_floor(s);
+  for (const glm::vec3 p :
+       {glm::vec3(0.0f, 1.9f, 0.0f), glm::vec3(0.2f, 0.0f, 0.1f), glm::vec3(-0.3f, 1.2f, -0.1f)}) {
+    const glm::vec3 a = on_cell(camera, p), b = on_cell(framed, s * p);
+    CHECK(b.x == Approx(a.x).margin(1e-5));
+    CHECK(b.y == Approx(a.y).margin(1e-5));
+  }
+  CHECK(framed.yaw_degrees == camera.yaw_degrees);
+  CHECK(framed.pitch_degrees == camera.pitch_degrees);
+  // Nonsense scales are clamped, never a camera inside the body or at infinity.
+  CHECK(camera.scaled_about_floor(0.0f).distance == Approx(0.1f * camera.distance));
+  CHECK(camera.scaled_about_floor(std::nanf("")).distance == Approx(camera.distance));
 }
