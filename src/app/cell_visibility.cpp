@@ -19,6 +19,10 @@ double look_alike_mm(double cell_px, double jnd_px) {
   return std::max(0.0, jnd_px) * millimetres_per_pixel(cell_px);
 }
 
+double choice_temperature_for_cells(double cell_px, double jnd_px) {
+  return std::max(kChoiceTemperatureMm, look_alike_mm(cell_px, jnd_px) / 3.0);
+}
+
 ZoomPolicy zoom_policy_for_cells(double cell_px, double jnd_px) {
   ZoomPolicy policy;
   policy.distinct_mm = std::max(kCloneMm, look_alike_mm(cell_px, jnd_px));

@@ -99,6 +99,10 @@ class SpacePerception {
   // cells are `cell_px` pixels high (0: not known yet), so that a grid can hold cells that all
   // look different; 0 keeps the optimizer's default (sps::SearchOptions::min_plane_length).
   virtual double min_plane_length(int cell_px) const = 0;
+  // With perceptual_scale() and population(): how noisy a person's choices are, in its units,
+  // when the cells are `cell_px` pixels high (0: not known yet); 0 keeps the optimizer's
+  // default (sps::SearchOptions::choice_temperature_mm).
+  virtual double choice_temperature(int cell_px) const = 0;
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const = 0;

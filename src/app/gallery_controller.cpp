@@ -279,6 +279,10 @@ void GalleryController::apply(const Intent& i) {
             if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
               session_->set_min_plane_length(length);
             }
+            if (const double t = perception->choice_temperature(cell_pixels_);
+                t > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
+              session_->set_choice_temperature(t);
+            }
           },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
@@ -572,6 +576,9 @@ void GalleryController::install_perception() {
       session_->set_perceptual_scale(scale);
       if (const double length = perception->min_plane_length(cell_pixels_); length > 0.0) {
         session_->set_min_plane_length(length);
+      }
+      if (const double t = perception->choice_temperature(cell_pixels_); t > 0.0) {
+        session_->set_choice_temperature(t);
       }
     }
   }

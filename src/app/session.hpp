@@ -139,6 +139,10 @@ class Session {
   // The smallest length of a plane's sides in the perceptual scale's units
   // (sps::SearchOptions::min_plane_length), from the next plane on (saved with the search).
   void set_min_plane_length(double length) { search_.set_min_plane_length(length); }
+  // How noisy the person's choices are for the estimate of the design in mind
+  // (sps::SearchOptions::choice_temperature_mm), from the next plane on (saved with the search
+  // when it has a population, the only case it is used in).
+  void set_choice_temperature(double mm) { search_.set_choice_temperature(mm); }
 
   // Holds (app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected

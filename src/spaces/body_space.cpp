@@ -132,6 +132,10 @@ double BodySpace::min_plane_length(int cell_px) const {
                      : 0.0;
 }
 
+double BodySpace::choice_temperature(int cell_px) const {
+  return cell_px > 0 ? app::choice_temperature_for_cells(cell_px) : 0.0;
+}
+
 Eigen::VectorXd BodySpace::perceptual_scale() const {
   return distance_->direction_rms_mm();
 }

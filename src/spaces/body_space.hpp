@@ -85,6 +85,7 @@ class BodySpace : public app::DesignSpace,
   double frame_scale(const std::vector<Eigen::VectorXd>& xs) const override;
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   double min_plane_length(int cell_px) const override;
+  double choice_temperature(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   sps::Population population() const override;
 

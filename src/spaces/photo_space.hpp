@@ -46,6 +46,8 @@ class PhotoSpace : public app::DesignSpace, public app::SpacePerception {
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   double min_plane_length(int /*cell_px*/) const override { return kPhotoMinPlaneDeltaE; }
+  // A picture's differences do not depend on the cell size here: the optimizer's default.
+  double choice_temperature(int /*cell_px*/) const override { return 0.0; }
   sps::Population population() const override;
   std::string default_export_name() const override { return "photo.png"; }
   std::string export_hint() const override { return ".png or .jpg, plus a .json of parameters"; }

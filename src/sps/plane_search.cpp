@@ -204,6 +204,13 @@ void PlaneSearch::set_min_plane_length(double length) {
   options_.min_plane_length = length;
 }
 
+void PlaneSearch::set_choice_temperature(double mm) {
+  if (!(mm >= 1e-6 && mm <= 1e4)) {
+    throw std::invalid_argument("the choice temperature must lie in [1e-6, 10000]");
+  }
+  options_.choice_temperature_mm = mm;
+}
+
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);

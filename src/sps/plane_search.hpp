@@ -164,6 +164,10 @@ class PlaneSearch {
   // Sets options().min_plane_length (in the perceptual scale's units) for the next planes.
   // Throws std::invalid_argument outside [0, 10000].
   void set_min_plane_length(double length);
+  // Sets options().choice_temperature_mm (how noisy the person's choices are, in the
+  // perceptual scale's units) for the next planes. Throws std::invalid_argument outside
+  // [1e-6, 10000].
+  void set_choice_temperature(double mm);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most

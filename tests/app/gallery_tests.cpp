@@ -1760,6 +1760,11 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   CHECK(at_default == Approx(20.4).margin(0.2));
   // The planes to come are at least that long, as the benchmark's pixel person has them.
   CHECK(c.session().search().options().min_plane_length == Approx(at_default));
+  // And the estimate of the body in mind takes the choices as about as noisy as a third of it.
+  CHECK(c.session().search().options().choice_temperature_mm ==
+        Approx(app::choice_temperature_for_cells(app::kDefaultCellPx)));
+  CHECK(app::choice_temperature_for_cells(app::kDefaultCellPx) == Approx(at_default / 3.0));
+  CHECK(app::choice_temperature_for_cells(2000) == Approx(app::kChoiceTemperatureMm));
   // Every grid of a plane clicked through at that size shows nine cells that differ by at
   // least that much, pairwise (or the plane ends early, the click being the choice).
   const auto distance = c.space().perception()->perceptual_distance();
