@@ -74,6 +74,7 @@ void GalleryView::sync_space(GalleryController& c) {
   // the UI has queued is freed here.
   release_gl();
   grid_.reset();
+  framed_points_.clear();  // another space frames the same points differently
   sliders_.space_opened();
   space_generation_ = c.space_generation();
   new_search_.space_opened(c, prefs_);
@@ -114,11 +115,25 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
     cells_[i].clamped = points[i].clamped;
     xs.push_back(points[i].x);
   }
-  const SpacePerception* perception = space.perception();
-  const auto scale = static_cast<float>(perception != nullptr ? perception->frame_scale(xs) : 1.0);
-  if (std::abs(scale - grid_frame_scale_) > 1e-4f) {
-    grid_frame_scale_ = scale;
-    ++grid_frame_version_;
+  // Measured again only when the grid's points change (a zoom, a new plane, an animation
+  // frame), not every frame.
+  const auto same = [](const std::vector<Eigen::VectorXd>& a,
+                       const std::vector<Eigen::VectorXd>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].size() != b[i].size() || a[i] != b[i]) return false;
+    }
+    return true;
+  };
+  if (!same(xs, framed_points_)) {
+    const SpacePerception* perception = space.perception();
+    const auto scale =
+        static_cast<float>(perception != nullptr ? perception->frame_scale(xs) : 1.0);
+    framed_points_ = std::move(xs);
+    if (std::abs(scale - grid_frame_scale_) > 1e-4f) {
+      grid_frame_scale_ = scale;
+      ++grid_frame_version_;
+    }
   }
   const Session& s = c.session();
   const auto& sliders = sliders_.point();

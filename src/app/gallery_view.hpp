@@ -124,6 +124,7 @@ class GalleryView {
   // height. The version counts its changes (the cells redraw on camera or framing changes).
   float grid_frame_scale_ = 1.0f;
   int grid_frame_version_ = 0;
+  std::vector<Eigen::VectorXd> framed_points_;  // the points grid_frame_scale_ is for
   bool orbiting_ = false;  // orbit() was called since the last build() (benchmark frames)
 
   std::vector<CellView> cells_;

@@ -97,10 +97,10 @@ class BodySpace : public app::DesignSpace,
   // The same model for projectors and solves that may outlive this space (a session in the
   // redo stack); made on first use.
   mutable std::shared_ptr<const body::Model> shared_model_;
-  std::shared_ptr<const body::ShapeDistance> distance_;  // shared with the session's hook
+  std::shared_ptr<const body::ShapeDistance> distance_;   // shared with the session's hook
   std::shared_ptr<const body::StandingHeights> heights_;  // the same, for the grid's framing
-  std::shared_ptr<render::BodyRenderer> renderer_;       // made on the GL thread, shared by cells
-  std::vector<float> eye_tints_;                         // the cells' eye colours (body_scene.hpp)
+  std::shared_ptr<render::BodyRenderer> renderer_;        // made on the GL thread, shared by cells
+  std::vector<float> eye_tints_;                          // the cells' eye colours (body_scene.hpp)
   // What each component does to the body, measured the first time a label is asked for.
   struct ComponentEffect {
     std::string label, details;

@@ -200,7 +200,9 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
 // A coefficient rounded to a multiple of 2^-17 m (7.6 micrometres): the offsets change by at
 // most 0.1 mm, and deflate packs posedirs three times tighter (it took 2 MB of each 6.3 MB
 // file unrounded).
-double quantised(double c) { return rounded_to_binary_step(c, 17); }
+double quantised(double c) {
+  return rounded_to_binary_step(c, 17);
+}
 
 // Fits the given joints' columns of posedirs (3V x 9 (J - 1)) on the rest body P, in parallel.
 PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind,
