@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # The body benchmark with a person who sees what the window shows:
 # `simulate --function body --jnd-px 2 --cell-px N` for the default window's cell
-# (210 px) and a 400 px cell, SPS against random planes and SLS, and SPS with a perfect chooser
-# (`--jnd-mm 0`) for reference. Writes docs/benchmarks/pixel_*.csv and the "pixel person"
+# (210 px) and a 400 px cell, SPS (the window's planes along where the estimate is least
+# certain, and the paper's expected-improvement planes) against random planes and SLS, and SPS
+# with a perfect chooser (`--jnd-mm 0`, expected-improvement planes) for reference. Writes docs/benchmarks/pixel_*.csv and the "pixel person"
 # section of docs/benchmarks.md (between its pixel-begin/pixel-end markers).
-#   usage: tools/pixel_person_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 20 15)
+#   usage: tools/pixel_person_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 100 15;
+#   20 trials rank settings by chance: the trajectories are chaotic)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${1:-$ROOT/build}
-TRIALS=${2:-20}
+TRIALS=${2:-100}
 PLANES=${3:-15}
 APP=$BUILD/sequential-gallery
 OUT=$ROOT/docs/benchmarks
@@ -21,6 +23,8 @@ for cell in 210 400; do
     "$APP" "${common[@]}" --method "$method" --jnd-px 2 --cell-px "$cell" \
       --csv "$OUT/pixel_${cell}px_${method}.csv" >/dev/null
   done
+  "$APP" "${common[@]}" --method sps --plane-axes expected-improvement --jnd-px 2 \
+    --cell-px "$cell" --csv "$OUT/pixel_${cell}px_sps-ei.csv" >/dev/null
 done
 "$APP" "${common[@]}" --method sps --jnd-mm 0 --csv "$OUT/pixel_perfect_sps.csv" >/dev/null
 end=$(date +%s)
@@ -43,18 +47,20 @@ lines = [
     "cell of N px (`--jnd-px 2 --cell-px N`; the default cell camera shows 2.144 m, so 2 px",
     "are 20.4 mm at the default window's 210 px cells and 10.7 mm at 400 px). Each grid is",
     "framed to its tallest body, as the window frames it (`app::cell_frame_scale`: a grid of",
-    "1.70 m people is shown 1.16 times larger, and 2 px are 17.6 mm of it at 210 px). Before",
-    "that framing, SPS had 17.01 mm and random planes 17.32 (median at plane 10, 210 px); on 40",
-    "other people (seeds 2000-2039) the framing took SPS from 17.61 to 16.72 mm by mean (random",
-    "planes 17.90 to 17.13), so about 1 mm of the gain below is the framing's. The estimate of",
-    "the body in mind takes this person's choices as noisy as a third of the threshold",
-    "(`app::choice_temperature_for_cells`: 6.8 mm at 210 px, 3.6 at 400; it was 3, fitted to the",
-    "5 mm person): on 100 other people (seeds 3000-3099, mean gap at plane 10) SPS went from",
-    "16.20 to 15.26 mm at 210 px and from 10.81 to 10.08 at 400 px, and random planes, centred",
-    "on the same estimate, from 17.13 to 14.53 at 210 px: there the estimate's centre does more",
-    "than SPS's choice of directions, and random planes are now ahead. The session",
-    "uses the same threshold for its zoom (as the window does at that cell size) and as the",
-    "planes' smallest side, and duplicate_grids counts grids with two cells closer than it.",
+    "1.70 m people is shown 1.16 times larger). The estimate of the body in mind takes this",
+    "person's choices as noisy as a third of the threshold (`app::choice_temperature_for_cells`:",
+    "6.8 mm at 210 px, 3.6 at 400). The session uses the same threshold for its zoom (as the",
+    "window does at that cell size) and as the planes' smallest side, and duplicate_grids",
+    "counts grids with two cells closer than it.",
+    "",
+    "`sps` is what the window does for a person: planes along the two directions in which the",
+    "estimate of the body in mind is least certain (`sps::PlaneAxes::kTargetUncertainty`: the",
+    "principal axes of its covariance as a person sees it, the inverse of the choice model's",
+    "Fisher information plus the population prior; half-diagonals 5 standard deviations and at",
+    "least 3 times the smallest side, reaching beyond the box like random planes, with clamped",
+    "cells kept apart). `sps-ei` is the paper's plane (u towards x_EI, v by the plane's mean EI),",
+    "which assumes a precise chooser: it is the one a perfect chooser is served best by, and the",
+    "reference row uses it.",
     "Gap = RMS vertex distance (mm)",
     f"of the best body so far; {trials} trials (seeds 1000 onwards). \"closed\" = (random - SPS) /",
     "(random - perfect chooser) at plane 10, by mean.",
@@ -64,7 +70,7 @@ lines = [
 ]
 closed = {}
 for cell in (210, 400):
-    data = {m: rows(f"pixel_{cell}px_{m}") for m in ("sps", "sps-random", "sls")}
+    data = {m: rows(f"pixel_{cell}px_{m}") for m in ("sps", "sps-ei", "sps-random", "sls")}
     for m, r in data.items():
         dup = max(float(x["duplicate_grids"]) for x in r.values())
         lines.append(f"| {cell} px | {m} | {float(r[5]['mean_gap']):.2f} | {float(r[10]['mean_gap']):.2f} | "

@@ -103,6 +103,9 @@ class SpacePerception {
   // when the cells are `cell_px` pixels high (0: not known yet); 0 keeps the optimizer's
   // default (sps::SearchOptions::choice_temperature_mm).
   virtual double choice_temperature(int cell_px) const = 0;
+  // With population(): what the planes' axes follow for a person in front of the window
+  // (sps::SearchOptions::plane_axes).
+  virtual sps::PlaneAxes plane_axes() const { return sps::PlaneAxes::kExpectedImprovement; }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const = 0;

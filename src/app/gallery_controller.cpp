@@ -580,6 +580,7 @@ void GalleryController::install_perception() {
       if (const double t = perception->choice_temperature(cell_pixels_); t > 0.0) {
         session_->set_choice_temperature(t);
       }
+      session_->set_plane_axes(perception->plane_axes());
     }
   }
   // Sessions saved before the target estimate existed have a scale but no population: their

@@ -452,7 +452,18 @@ void Session::update_views() {
       }
       return false;
     };
-    if (!widen(false)) widen(true);
+    if (!widen(false) && !widen(true)) {
+      // Cells clamped onto the same faces of the box can coincide however wide the grid is
+      // (a plane larger than the box, centred near a face): a narrower grid keeps them apart.
+      for (double factor : {0.8, 0.64, 0.5, 0.4}) {
+        sps::GridView narrower = base;
+        narrower.spacing *= factor;
+        if (!shows_look_alikes(narrower, policy_.look_alike_mm)) {
+          views_.front() = narrower;
+          break;
+        }
+      }
+    }
   }
   ended_early_ = false;
   for (std::size_t i = 0; i < path_.size(); ++i) {

@@ -143,6 +143,8 @@ class Session {
   // (sps::SearchOptions::choice_temperature_mm), from the next plane on (saved with the search
   // when it has a population, the only case it is used in).
   void set_choice_temperature(double mm) { search_.set_choice_temperature(mm); }
+  // The axes of the next planes (sps::SearchOptions::plane_axes; saved with the search).
+  void set_plane_axes(sps::PlaneAxes axes) { search_.set_plane_axes(axes); }
 
   // Holds (app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected

@@ -187,6 +187,10 @@ int run_body_simulation(const ArgParser& args) {
   if (!(options.choice_temperature_mm >= 0.01 && options.choice_temperature_mm <= 1e3)) {
     throw ArgError("--choice-temperature-mm must be in [0.01, 1000]");
   }
+  // The pixel person stands for a person at the window: the planes the window makes for them
+  // (BodySpace::plane_axes), unless --plane-axes says otherwise.
+  if (pixel_person && !args.has("plane-axes"))
+    options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
   const bool target_model = !args.has("no-target-model");
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
   if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {

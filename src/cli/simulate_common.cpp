@@ -38,11 +38,19 @@ double sum(const std::vector<double>& v) {
 }  // namespace
 
 const std::set<std::string>& search_option_names() {
-  static const std::set<std::string> names{
-      "method",          "current-best",       "threads",
-      "amplitude-prior", "length-scale-prior", "prior-log-variance",
-      "btl-scale",       "noise-variance",     "plane-restarts",
-      "ei-starts",       "representatives"};
+  static const std::set<std::string> names{"method",
+                                           "current-best",
+                                           "threads",
+                                           "amplitude-prior",
+                                           "length-scale-prior",
+                                           "prior-log-variance",
+                                           "btl-scale",
+                                           "noise-variance",
+                                           "plane-restarts",
+                                           "ei-starts",
+                                           "representatives",
+                                           "plane-axes",
+                                           "uncertainty-extent"};
   return names;
 }
 
@@ -67,6 +75,14 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
         options.model.prior_log_variance > 0 && options.model.btl_scale > 0 &&
         options.model.noise_variance > 0)) {
     throw ArgError("model settings must be positive");
+  }
+  const std::string axes_text = args.get_or("plane-axes", "expected-improvement");
+  if (!sps::parse_plane_axes(axes_text, options.plane_axes)) {
+    throw ArgError("--plane-axes: use expected-improvement or uncertainty");
+  }
+  options.uncertainty_extent = args.get_double("uncertainty-extent", options.uncertainty_extent);
+  if (!(options.uncertainty_extent >= 0.1 && options.uncertainty_extent <= 10.0)) {
+    throw ArgError("--uncertainty-extent must be in [0.1, 10]");
   }
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {

@@ -86,6 +86,9 @@ class BodySpace : public app::DesignSpace,
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   double min_plane_length(int cell_px) const override;
   double choice_temperature(int cell_px) const override;
+  // A person who cannot tell near neighbours apart at the cells' size: planes along where the
+  // estimate of the body in mind is least certain (docs/benchmarks.md, the pixel person).
+  sps::PlaneAxes plane_axes() const override { return sps::PlaneAxes::kTargetUncertainty; }
   Eigen::VectorXd perceptual_scale() const override;
   sps::Population population() const override;
 

@@ -4,7 +4,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include <Eigen/Eigenvalues>
 
 #include "sps/bounded_maximizer.hpp"
 #include "sps/expected_improvement.hpp"
@@ -15,6 +19,9 @@ namespace sps {
 namespace {
 
 constexpr std::array<double, 5> kLattice{-1.0, -0.5, 0.0, 0.5, 1.0};
+
+// The longest half-diagonal of an uncertainty plane along any coordinate (box units).
+constexpr double kMaxUncertaintyAxis = 2.0;
 
 // A random unit direction of `space` (zero if it has none): a random unit vector for the
 // whole space.
@@ -343,6 +350,92 @@ Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng) {
   p.u = random_unit(static_cast<int>(x_plus.size()), rng);
   p.v = x_plus.size() > 1 ? random_orthogonal_direction(p.u, rng)
                           : Eigen::VectorXd(Eigen::VectorXd::Zero(x_plus.size()));
+  return p;
+}
+
+namespace {
+
+// The largest beta >= 0 with x + beta * dir inside [0,1]^d (infinite for dir = 0).
+double room_along(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) {
+  double beta = std::numeric_limits<double>::infinity();
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    if (dir(k) > 0.0) beta = std::min(beta, (1.0 - x(k)) / dir(k));
+    if (dir(k) < 0.0) beta = std::min(beta, -x(k) / dir(k));
+  }
+  return std::max(0.0, beta);
+}
+
+// The smallest perceptual distance between two cells of the coarsest 3x3 grid of the plane
+// with both half-diagonals scaled by `factor`, each cell clamped into the box as shown.
+double closest_clamped_cells(const Plane& p, const Eigen::VectorXd& scale, double factor) {
+  std::vector<Eigen::VectorXd> cells;
+  for (int s = -1; s <= 1; ++s) {
+    for (int t = -1; t <= 1; ++t) {
+      const Eigen::VectorXd x = p.c + factor * (0.5 * (s + t) * p.u + 0.5 * (s - t) * p.v);
+      cells.push_back(x.cwiseMax(0.0).cwiseMin(1.0));
+    }
+  }
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (std::size_t j = i + 1; j < cells.size(); ++j) {
+      closest = std::min(closest, (cells[i] - cells[j]).cwiseProduct(scale).norm());
+    }
+  }
+  return closest;
+}
+
+}  // namespace
+
+Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
+                        const Eigen::VectorXd& scale, double extent, double min_length) {
+  const Eigen::Index d = c.size();
+  if (covariance.rows() != d || covariance.cols() != d || scale.size() != d) {
+    throw std::invalid_argument("uncertainty_plane: the covariance and scale need " +
+                                std::to_string(d) + " rows");
+  }
+  // The covariance as a person sees it: of S x, with S the perceptual scale.
+  const Eigen::MatrixXd seen = scale.asDiagonal() * covariance * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(seen);
+  const auto axis = [&](Eigen::Index i) {
+    const double length =
+        std::max(min_length, extent * std::sqrt(std::max(0.0, eigen.eigenvalues()(i))));
+    Eigen::VectorXd a = eigen.eigenvectors().col(i).cwiseQuotient(scale) * length;
+    // No further than twice across the box along any coordinate: the rest would be clamped.
+    const double widest = a.cwiseAbs().maxCoeff();
+    if (widest > kMaxUncertaintyAxis) a *= kMaxUncertaintyAxis / widest;
+    return a;
+  };
+  Plane p;
+  p.c = c;
+  p.u = axis(d - 1);
+  p.v = d > 1 ? axis(d - 2) : Eigen::VectorXd(Eigen::VectorXd::Zero(d));
+  // The plane may reach beyond the box (its cells are clamped when shown): centred on the
+  // estimate, with the first grid's extremes far apart, it finds the design in mind sooner
+  // than one fitted into the box (body benchmark). But near a face of the box clamped cells
+  // can coincide: then each axis is slid along itself until c +- it lies inside the box where
+  // the box is wide enough (c stays on the plane, off its centre), or to the middle of the
+  // box's chord where it is narrower; and if cells still come closer than half of min_length,
+  // the plane is shrunk to where they are farthest apart.
+  const double apart = 0.5 * min_length;
+  if (closest_clamped_cells(p, scale, 1.0) < apart) {
+    for (Eigen::VectorXd* a : {&p.u, &p.v}) {
+      if (a->norm() < 1e-12) continue;
+      const double ahead = room_along(p.c, *a), behind = room_along(p.c, -*a);
+      p.c += (ahead + behind < 2.0 ? 0.5 * (ahead - behind)
+                                   : std::clamp(0.0, 1.0 - behind, ahead - 1.0)) *
+             *a;
+    }
+  }
+  double best_factor = 1.0, best_apart = closest_clamped_cells(p, scale, 1.0);
+  for (double factor = 0.85; best_apart < apart && factor > 0.05; factor *= 0.85) {
+    const double closest = closest_clamped_cells(p, scale, factor);
+    if (closest > best_apart) {
+      best_apart = closest;
+      best_factor = factor;
+    }
+  }
+  p.u *= best_factor;
+  p.v *= best_factor;
   return p;
 }
 

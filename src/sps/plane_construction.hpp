@@ -85,6 +85,14 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
 // c = x+, random orthogonal u, v of length 1 (points outside the box are clamped when shown).
 Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
 
+// The plane through c along the directions in which the estimate of the design in mind is
+// least certain as a person sees them: the principal axes of `covariance` (box units) in the
+// perceptual metric of `scale`, each half-diagonal `extent` standard deviations long and at
+// least `min_length` (perceptual units). Like random planes it may reach beyond the box (its
+// cells are clamped when shown), but its clamped cells stay apart (see the definition).
+Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
+                        const Eigen::VectorXd& scale, double extent, double min_length);
+
 // Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei);
 

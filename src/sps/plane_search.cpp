@@ -134,6 +134,8 @@ void validate_options(const SearchOptions& o) {
   require(in(o.perceptual_btl_scale, 1e-8, 1e3), "perceptual_btl_scale must lie in [1e-8, 1000]");
   require(in(o.choice_temperature_mm, 1e-6, 1e4),
           "choice_temperature_mm must lie in [1e-6, 10000]");
+  require(in(o.uncertainty_extent, 0.1, 10.0), "uncertainty_extent must lie in [0.1, 10]");
+  require(in(o.uncertainty_min_lengths, 0.0, 10.0), "uncertainty_min_lengths must lie in [0, 10]");
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
@@ -153,6 +155,26 @@ const char* method_name(Method m) {
       return "sls";
   }
   return "sps";
+}
+
+const char* plane_axes_name(PlaneAxes a) {
+  switch (a) {
+    case PlaneAxes::kExpectedImprovement:
+      return "expected-improvement";
+    case PlaneAxes::kTargetUncertainty:
+      return "uncertainty";
+  }
+  return "expected-improvement";
+}
+
+bool parse_plane_axes(const std::string& name, PlaneAxes& out) {
+  for (PlaneAxes a : {PlaneAxes::kExpectedImprovement, PlaneAxes::kTargetUncertainty}) {
+    if (name == plane_axes_name(a)) {
+      out = a;
+      return true;
+    }
+  }
+  return false;
 }
 
 bool parse_method(const std::string& name, Method& out) {
@@ -417,6 +439,15 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     plane_ = random_plane(x_plus, rng_);
     return;
   }
+  const bool uncertain_axes = options_.method == Method::kSps && !hold_ &&
+                              target.scale.size() > 0 &&
+                              options_.plane_axes != PlaneAxes::kExpectedImprovement;
+  if (uncertain_axes) {
+    plane_ = uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus),
+                               options_.perceptual_scale, options_.uncertainty_extent,
+                               options_.uncertainty_min_lengths * options_.min_plane_length);
+    return;
+  }
   const double best_mean = model_->mean(x_plus);
   // One construction for both: a free search is a held one whose tangent space is the whole
   // space.
@@ -521,6 +552,9 @@ std::string PlaneSearch::to_json() const {
     j["options"]["population_mean"] = vec_to_json(options_.population.mean);
     j["options"]["population_sd"] = vec_to_json(options_.population.sd);
     j["options"]["choice_temperature_mm"] = options_.choice_temperature_mm;
+    j["options"]["plane_axes"] = plane_axes_name(options_.plane_axes);
+    j["options"]["uncertainty_extent"] = options_.uncertainty_extent;
+    j["options"]["uncertainty_min_lengths"] = options_.uncertainty_min_lengths;
   }
   j["rng"] = rng_state();
   json points = json::array();
@@ -636,6 +670,20 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
       if (o.contains("choice_temperature_mm")) {
         options.choice_temperature_mm =
             double_from_json(o.at("choice_temperature_mm"), "choice_temperature_mm", 1e-6, 1e4);
+      }
+      // Files from before the uncertainty planes keep the paper's axes.
+      if (o.contains("plane_axes") &&
+          !parse_plane_axes(json_fields::text(o, "plane_axes", "plane_axes", 64),
+                            options.plane_axes)) {
+        throw std::runtime_error("unknown plane_axes " + json_fields::brief(o.at("plane_axes")));
+      }
+      if (o.contains("uncertainty_extent")) {
+        options.uncertainty_extent =
+            double_from_json(o.at("uncertainty_extent"), "uncertainty_extent", 0.1, 10.0);
+      }
+      if (o.contains("uncertainty_min_lengths")) {
+        options.uncertainty_min_lengths =
+            double_from_json(o.at("uncertainty_min_lengths"), "uncertainty_min_lengths", 0.0, 10.0);
       }
     }
     PlaneSearch search(options);

@@ -26,6 +26,14 @@ enum class Method {
   kSls,        // sequential line search: the segment x+ -> x_EI (plane with v = 0)
 };
 
+// What the axes of an SPS plane follow once the design in mind is estimated (a population and
+// a perceptual scale): the paper's expected improvement of the goodness model, or where that
+// estimate is least certain.
+enum class PlaneAxes {
+  kExpectedImprovement,  // u towards x_EI, v maximizing the plane's mean EI (the paper)
+  kTargetUncertainty,    // u and v the two most uncertain directions of the estimate
+};
+
 enum class CurrentBest {
   kPosteriorMean,  // observed point with the largest posterior mean (paper's evaluation)
   kLastSelection,  // the user's last choice
@@ -80,6 +88,15 @@ struct SearchOptions {
   // 1.8 mm over 200 trials, docs/benchmarks.md).
   Population population;
   double choice_temperature_mm = 3.0;  // TargetModel::temperature_mm
+  // With a population: kTargetUncertainty spans the planes along where the estimate of the
+  // design in mind is least certain, each half-diagonal `uncertainty_extent` of its standard
+  // deviations and at least `uncertainty_min_lengths` times min_plane_length long. For a person
+  // who cannot tell near neighbours apart (the window's cells, the benchmark's pixel person)
+  // this finds the body sooner than the paper's expected improvement, which assumes a precise
+  // chooser; a precise chooser is better served by the latter (docs/benchmarks.md).
+  PlaneAxes plane_axes = PlaneAxes::kExpectedImprovement;
+  double uncertainty_extent = 5.0;
+  double uncertainty_min_lengths = 3.0;
 };
 
 // The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane
@@ -100,6 +117,8 @@ constexpr int kMaxSearchDims = 64;
 void validate_options(const SearchOptions& options);
 
 const char* method_name(Method m);
+const char* plane_axes_name(PlaneAxes a);
+bool parse_plane_axes(const std::string& name, PlaneAxes& out);
 bool parse_method(const std::string& name, Method& out);
 
 class PlaneSearch {
@@ -168,6 +187,8 @@ class PlaneSearch {
   // perceptual scale's units) for the next planes. Throws std::invalid_argument outside
   // [1e-6, 10000].
   void set_choice_temperature(double mm);
+  // Sets options().plane_axes for the next planes.
+  void set_plane_axes(PlaneAxes axes) { options_.plane_axes = axes; }
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
+
 #include "sps/bounded_maximizer.hpp"
 
 namespace sps {
@@ -101,6 +103,51 @@ Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& m
     if (result.value > best.value) best = result;
   }
   return best.x.size() == d ? best.x : typical;
+}
+
+Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const TargetModel& model,
+                                            const Eigen::VectorXd& t) {
+  validate_target_model(model, data.dims());
+  const Eigen::Index d = data.dims();
+  require(t.size() == d && t.allFinite(),
+          "the estimate needs " + std::to_string(d) + " finite entries");
+  const Eigen::MatrixXd& points = data.points();
+  const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
+  const double inv_temp = 1.0 / model.temperature_mm;
+  // The gradient in t of each point's utility -distance / temperature.
+  Eigen::MatrixXd utility_gradient(d, points.cols());
+  Eigen::VectorXd utility(points.cols());
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    const Eigen::VectorXd diff = points.col(i) - t;
+    const Eigen::VectorXd weighted = s2.cwiseProduct(diff);
+    const double distance = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
+    utility(i) = -distance * inv_temp;
+    utility_gradient.col(i) = weighted * (inv_temp / distance);
+  }
+  Eigen::MatrixXd information = model.population.sd.cwiseAbs2().cwiseInverse().asDiagonal();
+  std::vector<int> members;
+  for (const Preference& p : data.preferences()) {
+    members.assign(1, p.chosen);
+    members.insert(members.end(), p.others.begin(), p.others.end());
+    double top = -std::numeric_limits<double>::infinity();
+    for (int j : members) top = std::max(top, utility(j));
+    Eigen::VectorXd weight(static_cast<Eigen::Index>(members.size()));
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      weight(static_cast<Eigen::Index>(m)) = std::exp(utility(members[m]) - top);
+    }
+    weight /= weight.sum();
+    Eigen::VectorXd mean_gradient = Eigen::VectorXd::Zero(d);
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      mean_gradient += weight(static_cast<Eigen::Index>(m)) * utility_gradient.col(members[m]);
+    }
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      const Eigen::VectorXd centred = utility_gradient.col(members[m]) - mean_gradient;
+      information.noalias() +=
+          weight(static_cast<Eigen::Index>(m)) * (centred * centred.transpose());
+    }
+  }
+  const Eigen::MatrixXd symmetric = 0.5 * (information + information.transpose());
+  return symmetric.ldlt().solve(Eigen::MatrixXd::Identity(d, d));
 }
 
 }  // namespace sps

@@ -47,4 +47,12 @@ double target_log_posterior(const PreferenceData& data, const TargetModel& model
 Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& model,
                                 const Eigen::VectorXd& start);
 
+// How uncertain the estimate at t (the MAP estimate) still is: the inverse of the expected
+// information there (box units), the population prior's precision plus, for every choice, the
+// covariance of the compared points' utility gradients under the softmax of the choice (the
+// Fisher information of a multinomial logit). Unlike the observed Hessian it is positive
+// definite everywhere and has no spikes where t meets a chosen point (the distance's kink).
+Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const TargetModel& model,
+                                            const Eigen::VectorXd& t);
+
 }  // namespace sps

@@ -1765,6 +1765,8 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
         Approx(app::choice_temperature_for_cells(app::kDefaultCellPx)));
   CHECK(app::choice_temperature_for_cells(app::kDefaultCellPx) == Approx(at_default / 3.0));
   CHECK(app::choice_temperature_for_cells(2000) == Approx(app::kChoiceTemperatureMm));
+  // For a person at the window the planes run where that estimate is least certain.
+  CHECK(c.session().search().options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
   // Every grid of a plane clicked through at that size shows nine cells that differ by at
   // least that much, pairwise (or the plane ends early, the click being the choice).
   const auto distance = c.space().perception()->perceptual_distance();

@@ -1,13 +1,17 @@
 // The estimate of the design in mind (sps/target_estimate.hpp): its gradient, that it finds a
-// target from a careful chooser's clicks, its prior alone, its validation, and its use as the
-// plane centre (saved with the search).
+// target from a careful chooser's clicks, its prior alone, its validation, its use as the
+// plane centre (saved with the search), its uncertainty and the planes along it.
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
+#include "sps/plane_construction.hpp"
 #include "sps/plane_search.hpp"
 #include "sps/target_estimate.hpp"
 
@@ -168,4 +172,151 @@ TEST_CASE("with a population the plane is centred on the target estimate", "[tar
                   std::invalid_argument);
   CHECK_THROWS_AS(search.set_population({Eigen::Vector3d(0.5, 1.5, 0.5), m.population.sd}),
                   std::invalid_argument);
+}
+
+namespace {
+
+// Grids of nine points along coordinate 0 only (the others at the population mean), 1.5 mm
+// apart: a choice among them says where the design lies along that coordinate and nothing
+// about the others.
+sps::PreferenceData choices_along_first(const Eigen::VectorXd& target, int grids) {
+  const Eigen::Index d = target.size();
+  sps::PreferenceData data(static_cast<int>(d));
+  for (int g = 0; g < grids; ++g) {
+    std::vector<Eigen::VectorXd> shown;
+    for (int k = 0; k < 9; ++k) {
+      Eigen::VectorXd x = Eigen::VectorXd::Constant(d, 0.5);
+      x(0) = 0.3 + 0.05 * k + 0.01 * g;
+      shown.push_back(x);
+    }
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < shown.size(); ++k) {
+      if (std::abs(shown[k](0) - target(0)) < std::abs(shown[best](0) - target(0))) best = k;
+    }
+    std::vector<Eigen::VectorXd> others;
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      if (k != best) others.push_back(shown[k]);
+    }
+    data.add_preference(shown[best], others);
+  }
+  return data;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the estimate's uncertainty is the prior's without choices and shrinks where they "
+    "compared",
+    "[target]") {
+  const Eigen::Vector3d scale(30.0, 60.0, 20.0);
+  const sps::TargetModel m = model_for(scale);
+  const sps::PreferenceData none(3);
+  const Eigen::MatrixXd prior =
+      sps::target_posterior_covariance(none, m, Eigen::Vector3d::Constant(0.5));
+  CHECK((prior - m.population.sd.cwiseAbs2().asDiagonal().toDenseMatrix()).norm() < 1e-12);
+
+  const Eigen::Vector3d target(0.55, 0.5, 0.5);
+  const sps::PreferenceData data = choices_along_first(target, 6);
+  const Eigen::VectorXd t = sps::estimate_target(data, m, Eigen::Vector3d::Constant(0.5));
+  const Eigen::MatrixXd cov = sps::target_posterior_covariance(data, m, t);
+  CHECK((cov - cov.transpose()).norm() < 1e-12);
+  CHECK(cov.llt().info() == Eigen::Success);
+  // Along coordinate 0 the choices told a lot; along 1 and 2 nothing (the prior's variance).
+  CHECK(cov(0, 0) < 0.5 * prior(0, 0));
+  CHECK(cov(1, 1) == Approx(prior(1, 1)).epsilon(0.02));
+  CHECK(cov(2, 2) == Approx(prior(2, 2)).epsilon(0.02));
+  CHECK_THROWS_AS(sps::target_posterior_covariance(data, m, Eigen::Vector2d(0.5, 0.5)),
+                  std::invalid_argument);
+}
+
+TEST_CASE("an uncertainty plane spans the estimate's least certain directions as they look",
+          "[target][plane]") {
+  const Eigen::Vector3d scale(30.0, 60.0, 20.0);
+  // Variances in box units; as seen (times scale^2): 0.01*900 = 9, 0.001*3600 = 3.6 and
+  // 0.04*400 = 16: the most uncertain look is along coordinate 2, then 0.
+  const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.001, 0.04).asDiagonal();
+  const Eigen::Vector3d c = Eigen::Vector3d::Constant(0.5);
+  const sps::Plane p = sps::uncertainty_plane(c, cov, scale, 2.0, 1.0);
+  CHECK((p.c - c).norm() < 1e-12);
+  CHECK(std::abs(p.u(2)) > 0.0);
+  CHECK(std::abs(p.u(0)) + std::abs(p.u(1)) < 1e-9);
+  CHECK(std::abs(p.v(0)) > 0.0);
+  CHECK(std::abs(p.v(1)) + std::abs(p.v(2)) < 1e-9);
+  CHECK(p.u.cwiseProduct(scale).norm() == Approx(2.0 * 4.0));  // 2 SD of sqrt(16)
+  CHECK(p.v.cwiseProduct(scale).norm() == Approx(2.0 * 3.0));  // 2 SD of sqrt(9)
+  // Never shorter than the smallest length.
+  const sps::Plane longer = sps::uncertainty_plane(c, cov, scale, 2.0, 12.0);
+  CHECK(longer.u.cwiseProduct(scale).norm() == Approx(12.0));
+  CHECK(longer.v.cwiseProduct(scale).norm() == Approx(12.0));
+}
+
+TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells apart",
+          "[target][plane]") {
+  const Eigen::Vector3d scale(100.0, 100.0, 100.0);
+  // The most uncertain direction runs across the box; the centre is almost on its face.
+  const Eigen::Matrix3d cov = Eigen::Vector3d(0.09, 0.04, 0.0001).asDiagonal();
+  const Eigen::Vector3d c(0.02, 0.5, 0.5);
+  const double min_length = 20.0;
+  const sps::Plane p = sps::uncertainty_plane(c, cov, scale, 3.0, min_length);
+  // Clamped as the window shows them, no two cells of the first 3x3 grid coincide.
+  std::vector<Eigen::VectorXd> cells;
+  for (int s = -1; s <= 1; ++s) {
+    for (int t = -1; t <= 1; ++t) {
+      cells.push_back(p.point(s, t).cwiseMax(0.0).cwiseMin(1.0));
+    }
+  }
+  double closest = 1e9;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (std::size_t j = i + 1; j < cells.size(); ++j) {
+      closest = std::min(closest, (cells[i] - cells[j]).cwiseProduct(scale).norm());
+    }
+  }
+  CHECK(closest >= 0.5 * min_length);
+  // The estimate is still on the plane: c + a u + b v for some a, b.
+  Eigen::Matrix<double, 3, 2> axes;
+  axes << p.u, p.v;
+  const Eigen::Vector2d ab = axes.colPivHouseholderQr().solve(c - p.c);
+  CHECK((p.c + axes * ab - c).norm() < 1e-9);
+}
+
+TEST_CASE("uncertainty planes are centred on the estimate and saved with the search",
+          "[target][search]") {
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = 9;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::PlaneSearch search(o);
+  const sps::TargetModel m = model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  const Eigen::Vector3d goal(0.4, 0.6, 0.45);
+  for (int it = 0; it < 3; ++it) {
+    const sps::Plane& p = search.current_plane();
+    Eigen::VectorXd best = p.c;
+    for (double s = -1.0; s <= 1.0; s += 0.5) {
+      for (double t = -1.0; t <= 1.0; t += 0.5) {
+        const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
+        if (distance_mm(x, goal, o.perceptual_scale) < distance_mm(best, goal, o.perceptual_scale))
+          best = x;
+      }
+    }
+    search.submit(best);
+    const sps::Plane& next = search.current_plane();
+    const Eigen::VectorXd estimate = sps::estimate_target(search.data(), m, next.c);
+    CHECK((next.c - estimate).norm() < 1e-6);
+    // Its axes are orthogonal as a person sees them.
+    const Eigen::VectorXd su = next.u.cwiseProduct(o.perceptual_scale);
+    const Eigen::VectorXd sv = next.v.cwiseProduct(o.perceptual_scale);
+    CHECK(std::abs(su.dot(sv)) < 1e-9 * su.norm() * sv.norm());
+  }
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK(restored.options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
+  CHECK(restored.options().uncertainty_extent == Approx(o.uncertainty_extent));
+  auto j = nlohmann::json::parse(search.to_json());
+  j["options"]["plane_axes"] = "sideways";
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("plane_axes"));
+  j["options"].erase("plane_axes");  // a file from before: the paper's axes
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().plane_axes ==
+        sps::PlaneAxes::kExpectedImprovement);
 }
