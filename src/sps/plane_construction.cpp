@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -386,8 +387,9 @@ double closest_clamped_cells(const Plane& p, const Eigen::VectorXd& scale, doubl
 
 }  // namespace
 
-Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
-                        const Eigen::VectorXd& scale, double extent, double min_length) {
+std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
+                                       const Eigen::VectorXd& scale, double extent,
+                                       double min_length) {
   const Eigen::Index d = c.size();
   if (covariance.rows() != d || covariance.cols() != d || scale.size() != d) {
     throw std::invalid_argument("uncertainty_plane: the covariance and scale need " +
@@ -414,8 +416,8 @@ Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covaria
   // than one fitted into the box (body benchmark). But near a face of the box clamped cells
   // can coincide: then each axis is slid along itself until c +- it lies inside the box where
   // the box is wide enough (c stays on the plane, off its centre), or to the middle of the
-  // box's chord where it is narrower; and if cells still come closer than half of min_length,
-  // the plane is shrunk to where they are farthest apart.
+  // box's chord where it is narrower; and the plane is shrunk until cells are at least half
+  // of min_length apart (none when no shrinking gets them there).
   const double apart = 0.5 * min_length;
   if (closest_clamped_cells(p, scale, 1.0) < apart) {
     for (Eigen::VectorXd* a : {&p.u, &p.v}) {
@@ -434,6 +436,10 @@ Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covaria
       best_factor = factor;
     }
   }
+  // A plane whose cells come closer than its smallest side (a third of min_length: what a
+  // person can tell apart) is not shown; one between that and `apart` is (the session's own
+  // look-alike test widens or narrows its first grid where needed).
+  if (best_apart < min_length / 3.0) return std::nullopt;
   p.u *= best_factor;
   p.v *= best_factor;
   return p;

@@ -5,6 +5,7 @@
 // a free search is the held one in the whole space.
 #pragma once
 
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -89,9 +90,12 @@ Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
 // least certain as a person sees them: the principal axes of `covariance` (box units) in the
 // perceptual metric of `scale`, each half-diagonal `extent` standard deviations long and at
 // least `min_length` (perceptual units). Like random planes it may reach beyond the box (its
-// cells are clamped when shown), but its clamped cells stay apart (see the definition).
-Plane uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
-                        const Eigen::VectorXd& scale, double extent, double min_length);
+// cells are clamped when shown), shrunk until the cells of its first 3x3 grid, clamped, are
+// half of min_length apart where it can be; none where even the best shrink leaves two cells
+// closer than a third of min_length (the caller builds another kind of plane).
+std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
+                                       const Eigen::VectorXd& scale, double extent,
+                                       double min_length);
 
 // Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei);

@@ -443,10 +443,15 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
                               target.scale.size() > 0 &&
                               options_.plane_axes != PlaneAxes::kExpectedImprovement;
   if (uncertain_axes) {
-    plane_ = uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus),
-                               options_.perceptual_scale, options_.uncertainty_extent,
-                               options_.uncertainty_min_lengths * options_.min_plane_length);
-    return;
+    // Where the box leaves no such plane (the estimate near a face, uncertain along barely
+    // visible directions), the paper's plane, built inside the box.
+    if (auto plane =
+            uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus),
+                              options_.perceptual_scale, options_.uncertainty_extent,
+                              options_.uncertainty_min_lengths * options_.min_plane_length)) {
+      plane_ = *plane;
+      return;
+    }
   }
   const double best_mean = model_->mean(x_plus);
   // One construction for both: a free search is a held one whose tangent space is the whole

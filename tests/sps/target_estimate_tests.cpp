@@ -30,6 +30,20 @@ double distance_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
   return (a - b).cwiseProduct(scale).norm();
 }
 
+// "The shown point nearest the target (in mm) is preferred over the rest."
+void add_nearest_choice(sps::PreferenceData& data, const std::vector<Eigen::VectorXd>& shown,
+                        const Eigen::VectorXd& target, const Eigen::VectorXd& scale) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < shown.size(); ++k) {
+    if (distance_mm(shown[k], target, scale) < distance_mm(shown[best], target, scale)) best = k;
+  }
+  std::vector<Eigen::VectorXd> others;
+  for (std::size_t k = 0; k < shown.size(); ++k) {
+    if (k != best) others.push_back(shown[k]);
+  }
+  data.add_preference(shown[best], others);
+}
+
 // Grids of random points around `around`; the chooser takes the one nearest the target (in
 // mm) over the others, as a person with the target in mind and a sharp eye would.
 sps::PreferenceData careful_choices(const Eigen::VectorXd& target, const Eigen::VectorXd& scale,
@@ -44,17 +58,23 @@ sps::PreferenceData careful_choices(const Eigen::VectorXd& target, const Eigen::
       for (Eigen::Index i = 0; i < d; ++i) x(i) = uniform(rng);
       shown.push_back(x);
     }
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < shown.size(); ++k) {
-      if (distance_mm(shown[k], target, scale) < distance_mm(shown[best], target, scale)) best = k;
-    }
-    std::vector<Eigen::VectorXd> others;
-    for (std::size_t k = 0; k < shown.size(); ++k) {
-      if (k != best) others.push_back(shown[k]);
-    }
-    data.add_preference(shown[best], others);
+    add_nearest_choice(data, shown, target, scale);
   }
   return data;
+}
+
+// The point of the plane's 5x5 lattice (clamped into the box) nearest the goal: a careful
+// chooser's click.
+Eigen::VectorXd nearest_on_plane(const sps::Plane& p, const Eigen::VectorXd& goal,
+                                 const Eigen::VectorXd& scale) {
+  Eigen::VectorXd best = p.c;
+  for (double s = -1.0; s <= 1.0; s += 0.5) {
+    for (double t = -1.0; t <= 1.0; t += 0.5) {
+      const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
+      if (distance_mm(x, goal, scale) < distance_mm(best, goal, scale)) best = x;
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -136,16 +156,7 @@ TEST_CASE("with a population the plane is centred on the target estimate", "[tar
   search.set_population(m.population);
   const Eigen::Vector3d goal(0.3, 0.6, 0.45);
   for (int it = 0; it < 4; ++it) {
-    const sps::Plane& p = search.current_plane();
-    Eigen::VectorXd best = p.c;
-    for (double s = -1.0; s <= 1.0; s += 0.5) {
-      for (double t = -1.0; t <= 1.0; t += 0.5) {
-        const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
-        if (distance_mm(x, goal, o.perceptual_scale) < distance_mm(best, goal, o.perceptual_scale))
-          best = x;
-      }
-    }
-    search.submit(best);
+    search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
     // The centre maximizes the target posterior: no better value nearby.
     const Eigen::VectorXd c = search.current_plane().c;
     Eigen::VectorXd grad;
@@ -179,7 +190,8 @@ namespace {
 // Grids of nine points along coordinate 0 only (the others at the population mean), 1.5 mm
 // apart: a choice among them says where the design lies along that coordinate and nothing
 // about the others.
-sps::PreferenceData choices_along_first(const Eigen::VectorXd& target, int grids) {
+sps::PreferenceData choices_along_first(const Eigen::VectorXd& target, const Eigen::VectorXd& scale,
+                                        int grids) {
   const Eigen::Index d = target.size();
   sps::PreferenceData data(static_cast<int>(d));
   for (int g = 0; g < grids; ++g) {
@@ -189,15 +201,7 @@ sps::PreferenceData choices_along_first(const Eigen::VectorXd& target, int grids
       x(0) = 0.3 + 0.05 * k + 0.01 * g;
       shown.push_back(x);
     }
-    std::size_t best = 0;
-    for (std::size_t k = 1; k < shown.size(); ++k) {
-      if (std::abs(shown[k](0) - target(0)) < std::abs(shown[best](0) - target(0))) best = k;
-    }
-    std::vector<Eigen::VectorXd> others;
-    for (std::size_t k = 0; k < shown.size(); ++k) {
-      if (k != best) others.push_back(shown[k]);
-    }
-    data.add_preference(shown[best], others);
+    add_nearest_choice(data, shown, target, scale);
   }
   return data;
 }
@@ -216,7 +220,7 @@ TEST_CASE(
   CHECK((prior - m.population.sd.cwiseAbs2().asDiagonal().toDenseMatrix()).norm() < 1e-12);
 
   const Eigen::Vector3d target(0.55, 0.5, 0.5);
-  const sps::PreferenceData data = choices_along_first(target, 6);
+  const sps::PreferenceData data = choices_along_first(target, scale, 6);
   const Eigen::VectorXd t = sps::estimate_target(data, m, Eigen::Vector3d::Constant(0.5));
   const Eigen::MatrixXd cov = sps::target_posterior_covariance(data, m, t);
   CHECK((cov - cov.transpose()).norm() < 1e-12);
@@ -236,7 +240,9 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
   // 0.04*400 = 16: the most uncertain look is along coordinate 2, then 0.
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.001, 0.04).asDiagonal();
   const Eigen::Vector3d c = Eigen::Vector3d::Constant(0.5);
-  const sps::Plane p = sps::uncertainty_plane(c, cov, scale, 2.0, 1.0);
+  const auto made = sps::uncertainty_plane(c, cov, scale, 2.0, 1.0);
+  REQUIRE(made);
+  const sps::Plane& p = *made;
   CHECK((p.c - c).norm() < 1e-12);
   CHECK(std::abs(p.u(2)) > 0.0);
   CHECK(std::abs(p.u(0)) + std::abs(p.u(1)) < 1e-9);
@@ -245,7 +251,7 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
   CHECK(p.u.cwiseProduct(scale).norm() == Approx(2.0 * 4.0));  // 2 SD of sqrt(16)
   CHECK(p.v.cwiseProduct(scale).norm() == Approx(2.0 * 3.0));  // 2 SD of sqrt(9)
   // Never shorter than the smallest length.
-  const sps::Plane longer = sps::uncertainty_plane(c, cov, scale, 2.0, 12.0);
+  const sps::Plane longer = *sps::uncertainty_plane(c, cov, scale, 2.0, 12.0);
   CHECK(longer.u.cwiseProduct(scale).norm() == Approx(12.0));
   CHECK(longer.v.cwiseProduct(scale).norm() == Approx(12.0));
 }
@@ -257,7 +263,9 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.09, 0.04, 0.0001).asDiagonal();
   const Eigen::Vector3d c(0.02, 0.5, 0.5);
   const double min_length = 20.0;
-  const sps::Plane p = sps::uncertainty_plane(c, cov, scale, 3.0, min_length);
+  const auto made = sps::uncertainty_plane(c, cov, scale, 3.0, min_length);
+  REQUIRE(made);
+  const sps::Plane& p = *made;
   // Clamped as the window shows them, no two cells of the first 3x3 grid coincide.
   std::vector<Eigen::VectorXd> cells;
   for (int s = -1; s <= 1; ++s) {
@@ -272,6 +280,8 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
     }
   }
   CHECK(closest >= 0.5 * min_length);
+  // Where the whole box shows less than that (1 mm per unit), there is no such plane.
+  CHECK_FALSE(sps::uncertainty_plane(c, cov, Eigen::Vector3d::Ones(), 3.0, min_length));
   // The estimate is still on the plane: c + a u + b v for some a, b.
   Eigen::Matrix<double, 3, 2> axes;
   axes << p.u, p.v;
@@ -292,16 +302,7 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
   search.set_population(m.population);
   const Eigen::Vector3d goal(0.4, 0.6, 0.45);
   for (int it = 0; it < 3; ++it) {
-    const sps::Plane& p = search.current_plane();
-    Eigen::VectorXd best = p.c;
-    for (double s = -1.0; s <= 1.0; s += 0.5) {
-      for (double t = -1.0; t <= 1.0; t += 0.5) {
-        const Eigen::VectorXd x = p.point(s, t).cwiseMax(0.0).cwiseMin(1.0);
-        if (distance_mm(x, goal, o.perceptual_scale) < distance_mm(best, goal, o.perceptual_scale))
-          best = x;
-      }
-    }
-    search.submit(best);
+    search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
     const sps::Plane& next = search.current_plane();
     const Eigen::VectorXd estimate = sps::estimate_target(search.data(), m, next.c);
     CHECK((next.c - estimate).norm() < 1e-6);
