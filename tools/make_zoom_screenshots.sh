@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The grid of each zoom level of the first plane in the real window at 1280x720 (Xvfb,
+# The grid of each zoom level of the first plane (or, with ZOOM_SKIP_PLANES=N, of plane N+1)
+# in the real window at 1280x720 (Xvfb,
 # xdotool), clicking the centre cell each time: docs/screenshot-zoom-levels.png, the four
 # grids side by side as the window shows them (body cells about 210 px; with --space photo a
 # 5x5 grid of about 125 px), to judge whether a person can tell every cell apart at each level.
@@ -28,6 +29,18 @@ shots=()
 plane=1
 zoom=1
 ends() { grep -c 'No visible change\|choice submitted' "$T/log" || true; }
+# ZOOM_SKIP_PLANES=N: first click the centre cell through N planes, so that the grids shown
+# are those of a later plane (the window's planes for a person start with the second).
+for _ in $(seq "${ZOOM_SKIP_PLANES:-0}"); do
+  before=$(ends)
+  for _ in $(seq 8); do
+    click "$middle"
+    sleep 0.3
+    [[ $(ends) -gt $before ]] && break
+  done
+  plane=$((plane + 1))
+  sleep 2  # the next plane is computed
+done
 for level in 1 2 3 4; do
   rm -f "$T/shot.png"
   xdotool mousemove --sync --window "$WIN" 1270 700  # no cell hovered
