@@ -41,6 +41,16 @@ Eigen::VectorXd random_unit(int d, std::mt19937_64& rng) {
   return random_direction(TangentSpace(), d, rng);
 }
 
+// The largest beta >= 0 with x + beta * dir inside [0,1]^d (infinite for dir = 0).
+double room_along(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) {
+  double beta = std::numeric_limits<double>::infinity();
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    if (dir(k) > 0.0) beta = std::min(beta, (1.0 - x(k)) / dir(k));
+    if (dir(k) < 0.0) beta = std::min(beta, -x(k) / dir(k));
+  }
+  return std::max(0.0, beta);
+}
+
 // Half-width of the box for v: c +- v inside [0,1]^d.
 Eigen::VectorXd v_bound(const Eigen::VectorXd& c) {
   return c.cwiseMin(Eigen::VectorXd::Ones(c.size()) - c).cwiseMax(0.0);
@@ -59,12 +69,7 @@ Eigen::VectorXd fit_symmetric(const Eigen::VectorXd& c, const Eigen::VectorXd& v
 }  // namespace
 
 double fit_in_box(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) {
-  double beta = 1.0;
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
-    if (dir(k) > 0.0) beta = std::min(beta, (1.0 - x(k)) / dir(k));
-    if (dir(k) < 0.0) beta = std::min(beta, -x(k) / dir(k));
-  }
-  return std::max(0.0, beta);
+  return std::min(1.0, room_along(x, dir));
 }
 
 Eigen::VectorXd random_orthogonal_direction(const Eigen::VectorXd& u, std::mt19937_64& rng,
@@ -355,16 +360,6 @@ Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng) {
 }
 
 namespace {
-
-// The largest beta >= 0 with x + beta * dir inside [0,1]^d (infinite for dir = 0).
-double room_along(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) {
-  double beta = std::numeric_limits<double>::infinity();
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
-    if (dir(k) > 0.0) beta = std::min(beta, (1.0 - x(k)) / dir(k));
-    if (dir(k) < 0.0) beta = std::min(beta, -x(k) / dir(k));
-  }
-  return std::max(0.0, beta);
-}
 
 // The smallest perceptual distance between two cells of the coarsest 3x3 grid of the plane
 // with both half-diagonals scaled by `factor`, each cell clamped into the box as shown.

@@ -41,42 +41,64 @@ void validate_target_model(const TargetModel& model, int dims) {
           "the choice temperature must lie in (0, 10000] mm");
 }
 
-double target_log_posterior(const PreferenceData& data, const TargetModel& model,
-                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+namespace {
+
+// Every shown point's utility for a person with t in mind, -distance / temperature, and its
+// gradient in t (one column per point).
+struct PointUtilities {
+  Eigen::VectorXd value;
+  Eigen::MatrixXd gradient;
+};
+
+PointUtilities point_utilities(const PreferenceData& data, const TargetModel& model,
+                               const Eigen::VectorXd& t) {
   const Eigen::MatrixXd& points = data.points();
-  const Eigen::Index n = points.cols();
   const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
   const double inv_temp = 1.0 / model.temperature_mm;
-  // Distances of every point to t, and their gradients in t.
-  Eigen::VectorXd distance(n);
-  Eigen::MatrixXd d_distance(t.size(), n);
-  for (Eigen::Index i = 0; i < n; ++i) {
+  PointUtilities u{Eigen::VectorXd(points.cols()), Eigen::MatrixXd(t.size(), points.cols())};
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
     const Eigen::VectorXd diff = points.col(i) - t;
     const Eigen::VectorXd weighted = s2.cwiseProduct(diff);
-    distance(i) = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
-    d_distance.col(i) = -weighted / distance(i);
+    const double distance = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
+    u.value(i) = -distance * inv_temp;
+    u.gradient.col(i) = weighted * (inv_temp / distance);
   }
+  return u;
+}
+
+// The points compared in one choice (the chosen first) and the softmax of their utilities;
+// returns the log of the softmax's normaliser.
+double choice_softmax(const Preference& p, const Eigen::VectorXd& utility,
+                      std::vector<int>& members, Eigen::VectorXd& weight) {
+  members.assign(1, p.chosen);
+  members.insert(members.end(), p.others.begin(), p.others.end());
+  double top = -std::numeric_limits<double>::infinity();
+  for (int j : members) top = std::max(top, utility(j));
+  weight.resize(static_cast<Eigen::Index>(members.size()));
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    weight(static_cast<Eigen::Index>(m)) = std::exp(utility(members[m]) - top);
+  }
+  const double sum = weight.sum();
+  weight /= sum;
+  return top + std::log(sum);
+}
+
+}  // namespace
+
+double target_log_posterior(const PreferenceData& data, const TargetModel& model,
+                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+  const PointUtilities u = point_utilities(data, model, t);
   const Eigen::VectorXd z = (t - model.population.mean).cwiseQuotient(model.population.sd);
   double value = -0.5 * z.squaredNorm();
   if (gradient != nullptr) *gradient = -z.cwiseQuotient(model.population.sd);
   std::vector<int> members;
-  std::vector<double> weight;
+  Eigen::VectorXd weight;
   for (const Preference& p : data.preferences()) {
-    members.assign(1, p.chosen);
-    members.insert(members.end(), p.others.begin(), p.others.end());
-    double top = -std::numeric_limits<double>::infinity();
-    for (int j : members) top = std::max(top, -distance(j) * inv_temp);
-    weight.resize(members.size());
-    double sum = 0.0;
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      weight[m] = std::exp(-distance(members[m]) * inv_temp - top);
-      sum += weight[m];
-    }
-    value += -distance(p.chosen) * inv_temp - (top + std::log(sum));
+    value += u.value(p.chosen) - choice_softmax(p, u.value, members, weight);
     if (gradient != nullptr) {
-      *gradient -= inv_temp * d_distance.col(p.chosen);
+      *gradient += u.gradient.col(p.chosen);
       for (std::size_t m = 0; m < members.size(); ++m) {
-        *gradient += (inv_temp * weight[m] / sum) * d_distance.col(members[m]);
+        *gradient -= weight(static_cast<Eigen::Index>(m)) * u.gradient.col(members[m]);
       }
     }
   }
@@ -111,37 +133,18 @@ Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const Ta
   const Eigen::Index d = data.dims();
   require(t.size() == d && t.allFinite(),
           "the estimate needs " + std::to_string(d) + " finite entries");
-  const Eigen::MatrixXd& points = data.points();
-  const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
-  const double inv_temp = 1.0 / model.temperature_mm;
-  // The gradient in t of each point's utility -distance / temperature.
-  Eigen::MatrixXd utility_gradient(d, points.cols());
-  Eigen::VectorXd utility(points.cols());
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
-    const Eigen::VectorXd diff = points.col(i) - t;
-    const Eigen::VectorXd weighted = s2.cwiseProduct(diff);
-    const double distance = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
-    utility(i) = -distance * inv_temp;
-    utility_gradient.col(i) = weighted * (inv_temp / distance);
-  }
+  const PointUtilities u = point_utilities(data, model, t);
   Eigen::MatrixXd information = model.population.sd.cwiseAbs2().cwiseInverse().asDiagonal();
   std::vector<int> members;
+  Eigen::VectorXd weight;
   for (const Preference& p : data.preferences()) {
-    members.assign(1, p.chosen);
-    members.insert(members.end(), p.others.begin(), p.others.end());
-    double top = -std::numeric_limits<double>::infinity();
-    for (int j : members) top = std::max(top, utility(j));
-    Eigen::VectorXd weight(static_cast<Eigen::Index>(members.size()));
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      weight(static_cast<Eigen::Index>(m)) = std::exp(utility(members[m]) - top);
-    }
-    weight /= weight.sum();
+    choice_softmax(p, u.value, members, weight);
     Eigen::VectorXd mean_gradient = Eigen::VectorXd::Zero(d);
     for (std::size_t m = 0; m < members.size(); ++m) {
-      mean_gradient += weight(static_cast<Eigen::Index>(m)) * utility_gradient.col(members[m]);
+      mean_gradient += weight(static_cast<Eigen::Index>(m)) * u.gradient.col(members[m]);
     }
     for (std::size_t m = 0; m < members.size(); ++m) {
-      const Eigen::VectorXd centred = utility_gradient.col(members[m]) - mean_gradient;
+      const Eigen::VectorXd centred = u.gradient.col(members[m]) - mean_gradient;
       information.noalias() +=
           weight(static_cast<Eigen::Index>(m)) * (centred * centred.transpose());
     }
