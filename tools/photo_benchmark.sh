@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # The photo benchmark (the paper's photo application): `simulate --function photo` with a
 # person who cannot tell apart edits within 2.3 Delta E (CIEDE2000) of the best one, on the
-# window's 3x3 grids, for random target edits and the three named tasks; SPS against random
-# planes and SLS, SPS with a perfect chooser (`--jnd-delta-e 0`) and SPS on the paper's 5x5
+# window's 3x3 grids, for random target edits and the three named tasks; SPS as the window runs
+# it (uncertainty planes) against SPS on the paper's planes, random planes and SLS, SPS with a
+# perfect chooser (`--jnd-delta-e 0`) and SPS on the paper's 5x5
 # grids for reference. Writes
 # docs/benchmarks/photo_*.csv and the "photo" section of docs/benchmarks.md (between its
 # photo-begin/photo-end markers).
-#   usage: tools/photo_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 20 15)
+#   usage: tools/photo_benchmark.sh [BUILD_DIR] [TRIALS] [PLANES]   (defaults: build 60 15;
+#   about 40 minutes on 2 cores: 20 trials rank the methods by chance)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${1:-$ROOT/build}
-TRIALS=${2:-20}
+TRIALS=${2:-60}
 PLANES=${3:-15}
 APP=$BUILD/sequential-gallery
 OUT=$ROOT/docs/benchmarks
@@ -26,6 +28,8 @@ for target in random warmer-brighter cooler more-contrast; do
     "$APP" "${common[@]}" --target "$target" --method "$method" \
       --csv "$OUT/photo_${target}_${method}.csv" >/dev/null
   done
+  "$APP" "${common[@]}" --target "$target" --method sps --plane-axes expected-improvement \
+    --csv "$OUT/photo_${target}_sps-ei.csv" >/dev/null
 done
 "$APP" "${common[@]}" --target random --method sps --jnd-delta-e 0 \
   --csv "$OUT/photo_random_perfect.csv" >/dev/null
@@ -56,16 +60,25 @@ lines = [
     "than 3.5, a clear difference, by the visible difference: the mean CIEDE2000 over the tenth",
     "of the pixels that change most).",
     "Gap = mean CIEDE2000 over the picture of the best edit so far to the target.",
-    "Targets: `random` (each trial its own edit, every parameter N(0, 0.4) of its range) and the",
-    "named tasks `warmer-brighter`, `cooler`, `more-contrast` (one fixed edit each, 20 people",
-    f"with their own clicks). {trials} trials, seeds 1000 onwards; look-alike grids: the largest",
+    "`sps` is what the window does: planes along where the estimate of the edit in mind is",
+    "least certain (`--plane-axes uncertainty`, at least one smallest side long), its prior the",
+    "photo population (spaces/photo_perception.hpp: edits near no edit, each parameter 0.2 of",
+    "the box for one SD, a colour balance that shifts together across the tones, red with",
+    "yellow as a white-balance temperature), the first plane along that population's most",
+    "visible spreads, and a plane whose first grid cannot show nine different cells replaced by",
+    "the paper's; `sps-ei` the paper's planes (towards the expected improvement) with the same",
+    "estimate as their centre.",
+    "Targets: `random` (each trial its own edit, every parameter N(0, 0.4) of its range on its",
+    "own, not as the population's: such edits mostly do not shift the tones together) and the",
+    "named tasks `warmer-brighter`, `cooler`, `more-contrast` (one fixed edit each, one person",
+    f"per trial with their own clicks). {trials} trials, seeds 1000 onwards; look-alike grids: the largest",
     "share over the planes of grids shown with two cells closer than 3.5.",
     "",
     f"| target | method | mean gap@5 | mean gap@10 | median gap@5 | median gap@10 | median gap@{last} | look-alike grids (max share) |",
     "|---|---|---|---|---|---|---|---|",
 ]
 for target in ("random", "warmer-brighter", "cooler", "more-contrast"):
-    for m in ("sps", "sps-random", "sls"):
+    for m in ("sps", "sps-ei", "sps-random", "sls"):
         r = rows(f"photo_{target}_{m}")
         dup = max(float(x["duplicate_grids"]) for x in r.values())
         lines.append(f"| {target} | {m} | {g(r,5,'mean_gap'):.2f} | {g(r,10,'mean_gap'):.2f} | "

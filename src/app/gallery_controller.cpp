@@ -229,7 +229,7 @@ void GalleryController::begin_frame(double now_seconds) {
       !pending_resume_) {
     worker_.start(session_->search(), session_->submission(), generation_,
                   std::chrono::milliseconds(options_.optimizer_delay_ms),
-                  session_->plane_preparer());
+                  session_->plane_preparer(), session_->plane_vetter());
     submitted_generation_ = generation_;
   }
   update_display();
@@ -463,7 +463,8 @@ void GalleryController::use_point(const Eigen::VectorXd& given, const std::strin
   point_job_ = x;
   point_job_what_ = what + held_note;
   worker_.start(session_->search(), std::move(submission), generation_,
-                std::chrono::milliseconds(options_.optimizer_delay_ms), session_->plane_preparer());
+                std::chrono::milliseconds(options_.optimizer_delay_ms), session_->plane_preparer(),
+                session_->plane_vetter());
   submitted_generation_ = generation_;
   say(MessageKind::kInfo, what + held_note + ": your choice; computing the next plane...");
 }
@@ -580,6 +581,7 @@ void GalleryController::install_perception() {
       if (const double t = perception->choice_temperature(cell_pixels_); t > 0.0) {
         session_->set_choice_temperature(t);
       }
+      session_->set_uncertainty_min_lengths(perception->uncertainty_min_lengths());
       session_->set_plane_axes(perception->plane_axes());
     }
   }

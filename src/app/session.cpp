@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 
@@ -253,6 +254,28 @@ void Session::set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
   update_views();
 }
 
+void Session::retake_first_plane() {
+  if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
+    start_point_ = search_.current_plane().c;
+    update_views();
+  }
+}
+
+void Session::set_population(const sps::Population& population) {
+  search_.set_population(population);
+  retake_first_plane();
+}
+
+void Session::set_plane_axes(sps::PlaneAxes axes) {
+  search_.set_plane_axes(axes);
+  retake_first_plane();
+}
+
+void Session::set_uncertainty_min_lengths(double lengths) {
+  search_.set_uncertainty_min_lengths(lengths);
+  retake_first_plane();
+}
+
 void Session::set_perceptual_distance(PairwiseDistance distance, ZoomPolicy policy) {
   distance_ = std::move(distance);
   policy_ = std::move(policy);
@@ -292,6 +315,54 @@ std::vector<sps::GridPoint> plane_cells(const sps::Plane& plane, int n, const sp
     points.push_back(std::move(p));
   }
   return points;
+}
+
+// Whether two of the cells look alike (closer than `threshold` by `distance`).
+bool has_look_alike_pair(const std::vector<sps::GridPoint>& cells, const PairwiseDistance& distance,
+                         double threshold) {
+  std::vector<Eigen::VectorXd> xs;
+  for (const auto& p : cells) xs.push_back(p.x);
+  const Eigen::MatrixXd d = distance(xs);
+  for (Eigen::Index i = 0; i < d.rows(); ++i) {
+    for (Eigen::Index j = i + 1; j < d.cols(); ++j) {
+      if (!(d(i, j) >= threshold)) return true;
+    }
+  }
+  return false;
+}
+
+// The first grid of a plane as shown: the plane's own square (`base`) where no two cells look
+// alike; otherwise the plane is too small to see (e.g. it runs along directions that barely
+// change the design), so a wider grid, as long as no cell leaves the box; then, as a last
+// resort, wider ones with cells clamped onto the box (the outer cells then lie on the box's
+// faces, off the plane); then narrower ones, because cells clamped onto the same faces can
+// coincide however wide the grid is (a plane larger than the box, centred near a face).
+// nullopt: none of them shows nine different cells.
+std::optional<sps::GridView> distinct_first_view(
+    const sps::GridView& base,
+    const std::function<std::vector<sps::GridPoint>(const sps::GridView&)>& cells_of,
+    const PairwiseDistance& distance, double threshold) {
+  if (!has_look_alike_pair(cells_of(base), distance, threshold)) return base;
+  const auto widen = [&](bool allow_clamped) -> std::optional<sps::GridView> {
+    for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
+      sps::GridView wider = base;
+      wider.spacing *= factor;
+      const std::vector<sps::GridPoint> cells = cells_of(wider);
+      bool clamped = false;
+      for (const auto& p : cells) clamped = clamped || p.clamped;
+      if (clamped && !allow_clamped) return std::nullopt;
+      if (!has_look_alike_pair(cells, distance, threshold)) return wider;
+    }
+    return std::nullopt;
+  };
+  if (auto wider = widen(false)) return wider;
+  if (auto wider = widen(true)) return wider;
+  for (double factor : {0.8, 0.64, 0.5, 0.4}) {
+    sps::GridView narrower = base;
+    narrower.spacing *= factor;
+    if (!has_look_alike_pair(cells_of(narrower), distance, threshold)) return narrower;
+  }
+  return std::nullopt;
 }
 
 // Each cell moved back onto the holds (inside the box), on two threads (projections are
@@ -337,6 +408,21 @@ std::vector<sps::GridPoint> Session::cells_at(const sps::GridView& view) const {
   return cells;
 }
 
+PlaneVetter Session::plane_vetter() const {
+  // Holds show projected cells (and keep the paper's planes); the paper's zoom has no
+  // measure of what looks alike.
+  if (projector_ || !distance_) return {};
+  return [distance = distance_, threshold = policy_.look_alike_mm,
+          n = settings_.grid_size](sps::PlaneSearch& search) {
+    const sps::Plane& plane = search.current_plane();
+    if (plane.is_line()) return;
+    const auto cells_of = [&](const sps::GridView& view) { return plane_cells(plane, n, view); };
+    if (!distinct_first_view(first_view(false, n), cells_of, distance, threshold)) {
+      search.replace_uncertainty_plane();
+    }
+  };
+}
+
 PlanePreparer Session::plane_preparer() const {
   if (!projector_) return {};
   return [projector = projector_, n = settings_.grid_size](const sps::PlaneSearch& search) {
@@ -363,15 +449,8 @@ std::vector<sps::GridPoint> Session::decision_cells(const sps::GridView& view) c
 bool Session::shows_look_alikes(const sps::GridView& view, double threshold_mm,
                                 bool projected) const {
   if (!distance_) return false;
-  std::vector<Eigen::VectorXd> xs;
-  for (auto& p : projected ? cells_at(view) : decision_cells(view)) xs.push_back(std::move(p.x));
-  const Eigen::MatrixXd d = distance_(xs);
-  for (Eigen::Index i = 0; i < d.rows(); ++i) {
-    for (Eigen::Index j = i + 1; j < d.cols(); ++j) {
-      if (!(d(i, j) >= threshold_mm)) return true;
-    }
-  }
-  return false;
+  return has_look_alike_pair(projected ? cells_at(view) : decision_cells(view), distance_,
+                             threshold_mm);
 }
 
 sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell& clicked,
@@ -431,38 +510,11 @@ void Session::update_views() {
   }
   prepared_.reset();
   views_.assign(1, first_view(line, settings_.grid_size));
-  if (distance_ && !line && shows_look_alikes(views_.front(), policy_.look_alike_mm)) {
-    // The optimizer's plane is too small to see (e.g. it runs along directions that barely
-    // change the body): widen the first grid beyond the plane's square, as long as no cell
-    // leaves the box.
-    // Cells clamped onto the box are a last resort (the outer cells then lie on the box's
-    // faces, off the plane): tried only when no wider grid inside the box has none.
-    const sps::GridView base = views_.front();
-    const auto widen = [&](bool allow_clamped) {
-      for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
-        sps::GridView wider = base;
-        wider.spacing *= factor;
-        bool clamped = false;
-        for (const auto& p : decision_cells(wider)) clamped = clamped || p.clamped;
-        if (clamped && !allow_clamped) return false;
-        if (!shows_look_alikes(wider, policy_.look_alike_mm)) {
-          views_.front() = wider;
-          return true;
-        }
-      }
-      return false;
-    };
-    if (!widen(false) && !widen(true)) {
-      // Cells clamped onto the same faces of the box can coincide however wide the grid is
-      // (a plane larger than the box, centred near a face): a narrower grid keeps them apart.
-      for (double factor : {0.8, 0.64, 0.5, 0.4}) {
-        sps::GridView narrower = base;
-        narrower.spacing *= factor;
-        if (!shows_look_alikes(narrower, policy_.look_alike_mm)) {
-          views_.front() = narrower;
-          break;
-        }
-      }
+  if (distance_ && !line) {
+    const auto cells_of = [this](const sps::GridView& view) { return decision_cells(view); };
+    if (auto shown =
+            distinct_first_view(views_.front(), cells_of, distance_, policy_.look_alike_mm)) {
+      views_.front() = *shown;
     }
   }
   ended_early_ = false;

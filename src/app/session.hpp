@@ -110,6 +110,9 @@ struct PreparedPlane {
 };
 // Makes the PreparedPlane of a search's current plane; thread-safe.
 using PlanePreparer = std::function<PreparedPlane(const sps::PlaneSearch&)>;
+// Checks a search's new plane right after submit() and may have it replaced
+// (sps::PlaneSearch::replace_uncertainty_plane); thread-safe.
+using PlaneVetter = std::function<void(sps::PlaneSearch&)>;
 
 class Session {
  public:
@@ -135,7 +138,9 @@ class Session {
   // Where the space's designs typically lie (e.g. SpacePerception::population()); with a
   // perceptual scale the planes are then centred on the estimate of the design the person has
   // in mind (sps::SearchOptions::population), from the next plane on (saved with the search).
-  void set_population(const sps::Population& population) { search_.set_population(population); }
+  // Before the first click a population whose coordinates change together also gives the
+  // first plane (sps::PlaneSearch::use_visible_first_plane), as does set_plane_axes.
+  void set_population(const sps::Population& population);
   // The smallest length of a plane's sides in the perceptual scale's units
   // (sps::SearchOptions::min_plane_length), from the next plane on (saved with the search).
   void set_min_plane_length(double length) { search_.set_min_plane_length(length); }
@@ -144,7 +149,10 @@ class Session {
   // when it has a population, the only case it is used in).
   void set_choice_temperature(double mm) { search_.set_choice_temperature(mm); }
   // The axes of the next planes (sps::SearchOptions::plane_axes; saved with the search).
-  void set_plane_axes(sps::PlaneAxes axes) { search_.set_plane_axes(axes); }
+  void set_plane_axes(sps::PlaneAxes axes);
+  // How long uncertainty planes are at least, in units of the smallest plane length
+  // (sps::SearchOptions::uncertainty_min_lengths; saved with the search).
+  void set_uncertainty_min_lengths(double lengths);
 
   // Holds (app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected
@@ -203,6 +211,11 @@ class Session {
   // With holds, what a worker runs after the optimizer to prepare the next plane (it holds
   // the projector and the grid size, not the session); empty without holds.
   PlanePreparer plane_preparer() const;
+  // For the optimizer's worker, right after submit(): an uncertainty plane whose first grid
+  // cannot show nine cells that look different (however it is widened or narrowed, as
+  // update_views() tries) is replaced by the paper's plane. Empty with holds or without a
+  // perceptual distance.
+  PlaneVetter plane_vetter() const;
   // Installs the search state computed from a point the user set directly (expert sliders,
   // submitted as preferred over the previous best): it ends the current plane as if chosen
   // there, with no clicks in its history entry.
@@ -246,6 +259,8 @@ class Session {
   static Session from_json(const std::string& text);
 
  private:
+  // Before the first click: the first plane again, from what the search knows now.
+  void retake_first_plane();
   // Recomputes views_ and ended_early_ from the plane, the path and the distance hook.
   void update_views();
   sps::GridView next_view(const sps::GridView& view, const sps::GridCell& clicked, bool check,

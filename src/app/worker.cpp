@@ -6,11 +6,12 @@
 namespace app {
 
 bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, int generation,
-                         std::chrono::milliseconds delay, PlanePreparer prepare) {
+                         std::chrono::milliseconds delay, PlanePreparer prepare, PlaneVetter vet) {
   if (job_.valid()) return false;
   job_ = std::async(
-      std::launch::async, [search = sps::PlaneSearch(search), submission = std::move(submission),
-                           generation, delay, prepare = std::move(prepare)]() mutable {
+      std::launch::async,
+      [search = sps::PlaneSearch(search), submission = std::move(submission), generation, delay,
+       prepare = std::move(prepare), vet = std::move(vet)]() mutable {
         Result result;
         result.generation = generation;
         const auto start = std::chrono::steady_clock::now();
@@ -18,6 +19,14 @@ bool SubmitWorker::start(const sps::PlaneSearch& search, Submission submission, 
         try {
           search.submit(submission.chosen, submission.extra_comparisons, submission.representatives,
                         submission.set_directly);
+          if (vet) {
+            // Only a better plane where the new one looks alike: if that fails, the
+            // optimizer's plane stands.
+            try {
+              vet(search);
+            } catch (const std::exception&) {
+            }
+          }
           if (prepare) {
             // Only a head start for the window: if it fails, the window makes it itself
             // (and reports what went wrong there); the optimizer's result stands.

@@ -27,11 +27,11 @@ class SubmitWorker {
 
   // Starts computing; only one job at a time (returns false if one is running).
   // `delay` (testing only) holds the job back, to show that the UI stays live meanwhile.
-  // `prepare` (Session::plane_preparer(); may be empty) runs after the optimizer, on the same
-  // thread.
+  // `vet` (Session::plane_vetter(); may be empty) and then `prepare`
+  // (Session::plane_preparer(); may be empty) run after the optimizer, on the same thread.
   bool start(const sps::PlaneSearch& search, Submission submission, int generation,
              std::chrono::milliseconds delay = std::chrono::milliseconds(0),
-             PlanePreparer prepare = {});
+             PlanePreparer prepare = {}, PlaneVetter vet = {});
   bool busy() const { return job_.valid(); }
   // The finished result, once; nullopt while running or idle.
   std::optional<Result> poll();

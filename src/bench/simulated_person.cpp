@@ -56,7 +56,7 @@ PlaneOutcome play_plane_jnd(app::Session& session, const TargetDistance& to_targ
   out.chosen = submission.chosen;
   app::SubmitWorker worker;
   worker.start(session.search(), submission, 0, std::chrono::milliseconds(0),
-               session.plane_preparer());
+               session.plane_preparer(), session.plane_vetter());
   auto result = worker.wait();
   if (!result || !result->search) {
     throw std::runtime_error("the optimizer failed: " + (result ? result->error : "no result"));

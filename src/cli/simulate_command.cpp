@@ -46,6 +46,13 @@ options:
   --resolution R      argmax user: lattice resolution (default 640, as the reference)
   --zoom-prefs        zoom user: also submit every level's click as preference data
   --current-best C    posterior-mean | last-selection (default posterior-mean)
+  --plane-axes A      what SPS planes span once the design in mind is estimated:
+                      expected-improvement (the paper's) | uncertainty (where that estimate is
+                      least certain); default: the window's (uncertainty for --jnd-px and for
+                      photos, else the paper's)
+  --uncertainty-extent X   half-diagonals of uncertainty planes in SDs (default 5)
+  --uncertainty-min-lengths N  their smallest side, in smallest plane lengths (default 3;
+                      photos 1)
   --threads N         optimizer threads (default 2)
   --csv FILE          also write the table as CSV
   --per-trial-csv F   write every trial's gap and optimizer seconds per iteration

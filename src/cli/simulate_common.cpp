@@ -50,7 +50,8 @@ const std::set<std::string>& search_option_names() {
                                            "ei-starts",
                                            "representatives",
                                            "plane-axes",
-                                           "uncertainty-extent"};
+                                           "uncertainty-extent",
+                                           "uncertainty-min-lengths"};
   return names;
 }
 
@@ -83,6 +84,11 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
   options.uncertainty_extent = args.get_double("uncertainty-extent", options.uncertainty_extent);
   if (!(options.uncertainty_extent >= 0.1 && options.uncertainty_extent <= 10.0)) {
     throw ArgError("--uncertainty-extent must be in [0.1, 10]");
+  }
+  options.uncertainty_min_lengths =
+      args.get_double("uncertainty-min-lengths", options.uncertainty_min_lengths);
+  if (!(options.uncertainty_min_lengths >= 0.0 && options.uncertainty_min_lengths <= 10.0)) {
+    throw ArgError("--uncertainty-min-lengths must be in [0, 10]");
   }
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {

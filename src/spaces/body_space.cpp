@@ -144,7 +144,8 @@ sps::Population body_population(int components) {
   // SMPL-family shape coefficients are standardized: beta ~ N(0, 1) over the people the model
   // was built from, and a search point maps beta = 6x - 3 (+-3 SD), so x ~ N(1/2, (1/6)^2).
   const auto k = static_cast<Eigen::Index>(components);
-  return {Eigen::VectorXd::Constant(k, 0.5), Eigen::VectorXd::Constant(k, 1.0 / 6.0)};
+  return {Eigen::VectorXd::Constant(k, 0.5), Eigen::VectorXd::Constant(k, 1.0 / 6.0),
+          Eigen::MatrixXd()};
 }
 
 sps::Population BodySpace::population() const {

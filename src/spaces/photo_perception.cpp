@@ -54,8 +54,32 @@ app::ZoomPolicy photo_zoom_policy(double distinct) {
 }
 
 sps::Population photo_population() {
-  return {Eigen::VectorXd::Constant(kPhotoParameters, 0.5),
-          Eigen::VectorXd::Constant(kPhotoParameters, 0.2)};
+  sps::Population population{Eigen::VectorXd::Constant(kPhotoParameters, 0.5),
+                             Eigen::VectorXd::Constant(kPhotoParameters, 0.2), Eigen::MatrixXd()};
+  // Each colour-balance parameter (tone band b: shadows, midtones, highlights; axis a:
+  // cyan-red, magenta-green, yellow-blue) as the sum of shared factors and its own part, each
+  // of unit variance: a global white-balance temperature T (red with yellow: +cyan-red and
+  // -yellow-blue), a shift of the axis in every band A_a, and the band's own U_ba:
+  //   x_ba = l_T s_a T + l_A A_a + l_U U_ba,   s = (+1, 0, -1),   l_T^2 + l_A^2 + l_U^2 = 1.
+  // So the bands of one axis correlate by l_T^2 s_a^2 + l_A^2 and red with yellow by -l_T^2.
+  // The weights are modelling choices, not measurements; brightness, contrast and saturation
+  // stay independent.
+  Eigen::MatrixXd loadings = Eigen::MatrixXd::Zero(kPhotoParameters, 4);  // T, A_cr, A_mg, A_yb
+  Eigen::VectorXd own = Eigen::VectorXd::Ones(kPhotoParameters);
+  constexpr double kTemperature2 = 0.5, kAxis2 = 0.15, kTint2 = 0.5;
+  for (int band = 0; band < 3; ++band) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int i = 3 + 3 * band + axis;
+      const double sign = axis == 0 ? 1.0 : (axis == 2 ? -1.0 : 0.0);
+      const double axis2 = axis == 1 ? kTint2 : kAxis2;
+      loadings(i, 0) = sign * std::sqrt(kTemperature2);
+      loadings(i, 1 + axis) = std::sqrt(axis2);
+      own(i) = 1.0 - axis2 - sign * sign * kTemperature2;
+    }
+  }
+  population.correlation = loadings * loadings.transpose();
+  population.correlation.diagonal() += own;
+  return population;
 }
 
 Lab srgb_to_lab(const std::array<float, 3>& rgb) {

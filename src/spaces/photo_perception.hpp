@@ -52,6 +52,11 @@ constexpr double kPhotoDistinctDeltaE = 3.5;
 // (docs/benchmarks.md).
 constexpr double kPhotoMinPlaneDeltaE = 20.0;
 
+// With uncertainty planes (the window's, sps::PlaneAxes::kTargetUncertainty): their sides at
+// least one smallest plane length long (the bodies' 3 lengths would ask for 60 Delta E, which
+// most edits of the box cannot show). Photo benchmark, docs/benchmarks.md.
+constexpr double kPhotoUncertaintyMinLengths = 1.0;
+
 // The session's zoom rules for photos, in Delta E where a body's are in millimetres: no grid
 // shown holds two edits closer than `distinct` and no zoom step makes neighbours closer than
 // it; a zoom-level click counts as preferred only over cells at least twice that far from it.

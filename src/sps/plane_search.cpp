@@ -139,6 +139,9 @@ void validate_options(const SearchOptions& o) {
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
+  require(o.population.correlation.size() == 0 || (o.population.correlation.rows() == o.dims &&
+                                                   o.population.correlation.cols() == o.dims),
+          "the population correlation needs dims x dims entries");
   require(in(m.noise_variance, 1e-12, 1.0), "noise_variance must lie in [1e-12, 1]");
   require(m.max_hyper_iterations >= 0 && m.max_hyper_iterations <= 100000,
           "max_hyper_iterations must be 0-100000");
@@ -233,6 +236,13 @@ void PlaneSearch::set_choice_temperature(double mm) {
   options_.choice_temperature_mm = mm;
 }
 
+void PlaneSearch::set_uncertainty_min_lengths(double lengths) {
+  if (!(lengths >= 0.0 && lengths <= 10.0)) {
+    throw std::invalid_argument("the uncertainty planes' smallest length must lie in [0, 10]");
+  }
+  options_.uncertainty_min_lengths = lengths;
+}
+
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);
@@ -306,6 +316,24 @@ bool PlaneSearch::use_visible_first_plane() {
 
 bool PlaneSearch::visible_start(Plane& plane) const {
   if (options_.perceptual_scale.size() != options_.dims) return false;
+  // A population whose coordinates change together (a photo's colour balance across the
+  // tones): the first plane spans the directions in which its designs differ most as a person
+  // sees them, its principal axes, as the later uncertainty planes span the estimate's. With
+  // independent coordinates those are the most visible coordinates, which
+  // visible_first_plane takes at the extent measured for bodies.
+  const Population& population = options_.population;
+  if (!hold_ && options_.method == Method::kSps &&
+      options_.plane_axes == PlaneAxes::kTargetUncertainty && !population.empty() &&
+      population.correlation.size() > 0) {
+    const Eigen::MatrixXd covariance =
+        population.sd.asDiagonal() * population.correlation * population.sd.asDiagonal();
+    if (auto first = uncertainty_plane(
+            population.mean, covariance, options_.perceptual_scale, options_.uncertainty_extent,
+            options_.uncertainty_min_lengths * options_.min_plane_length)) {
+      plane = *first;
+      return true;
+    }
+  }
   plane = hold_ ? held_first_plane(*hold_, options_.perceptual_scale, kHeldFirstPlaneExtent)
                 : visible_first_plane(options_.perceptual_scale);
   return true;
@@ -404,7 +432,25 @@ void PlaneSearch::submit(const Eigen::VectorXd& chosen,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+bool PlaneSearch::replace_uncertainty_plane() {
+  if (!uncertainty_plane_) return false;
+  const PlaneAxes axes = options_.plane_axes;
+  options_.plane_axes = PlaneAxes::kExpectedImprovement;
+  try {
+    propose_next_plane(last_choice_, last_set_directly_);
+  } catch (...) {
+    options_.plane_axes = axes;
+    throw;
+  }
+  options_.plane_axes = axes;
+  uncertainty_plane_ = false;
+  return true;
+}
+
 void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly) {
+  last_choice_ = last_choice;
+  last_set_directly_ = set_directly;
+  uncertainty_plane_ = false;
   Eigen::VectorXd x_plus = last_choice;
   // A point the user set directly is where the search goes on from, as they asked.
   if (!set_directly && options_.current_best == CurrentBest::kPosteriorMean) {
@@ -450,6 +496,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
                               options_.perceptual_scale, options_.uncertainty_extent,
                               options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane_ = *plane;
+      uncertainty_plane_ = true;
       return;
     }
   }
@@ -495,6 +542,7 @@ void PlaneSearch::start_over() {
   model_ = std::make_shared<PreferenceModel>(options_.dims, options_.model);
   history_.clear();
   ++start_overs_;
+  uncertainty_plane_ = false;
   plane_ = first_plane(options_.dims, rng_);
   visible_start(plane_);
 }
@@ -503,6 +551,7 @@ bool PlaneSearch::undo() {
   if (history_.empty()) return false;
   const Snapshot s = history_.back();
   history_.pop_back();
+  uncertainty_plane_ = false;
   data_.truncate(s.points, s.preferences);
   model_ = s.points == 0
                ? std::make_shared<PreferenceModel>(options_.dims, options_.model)
@@ -556,6 +605,12 @@ std::string PlaneSearch::to_json() const {
   if (!options_.population.empty()) {
     j["options"]["population_mean"] = vec_to_json(options_.population.mean);
     j["options"]["population_sd"] = vec_to_json(options_.population.sd);
+    if (options_.population.correlation.size() > 0) {
+      // Row by row, dims x dims entries.
+      const Eigen::MatrixXd rows = options_.population.correlation.transpose();
+      j["options"]["population_correlation"] =
+          vec_to_json(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
+    }
     j["options"]["choice_temperature_mm"] = options_.choice_temperature_mm;
     j["options"]["plane_axes"] = plane_axes_name(options_.plane_axes);
     j["options"]["uncertainty_extent"] = options_.uncertainty_extent;
@@ -672,6 +727,16 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
           vec_from_json(o.at("population_mean"), "population_mean", options.dims, 0.0, 1.0);
       options.population.sd =
           vec_from_json(o.at("population_sd"), "population_sd", options.dims, 1e-9, 1e3);
+      // Files from before correlated populations have independent coordinates. The matrix's
+      // symmetry and definiteness are checked with the rest of the population (set_population).
+      if (o.contains("population_correlation")) {
+        const Eigen::VectorXd entries =
+            vec_from_json(o.at("population_correlation"), "population_correlation",
+                          static_cast<Eigen::Index>(options.dims) * options.dims, -1.0, 1.0);
+        options.population.correlation =
+            Eigen::Map<const Eigen::MatrixXd>(entries.data(), options.dims, options.dims)
+                .transpose();
+      }
       if (o.contains("choice_temperature_mm")) {
         options.choice_temperature_mm =
             double_from_json(o.at("choice_temperature_mm"), "choice_temperature_mm", 1e-6, 1e4);

@@ -189,6 +189,14 @@ class PlaneSearch {
   void set_choice_temperature(double mm);
   // Sets options().plane_axes for the next planes.
   void set_plane_axes(PlaneAxes axes) { options_.plane_axes = axes; }
+  // Right after submit(): where its plane is an uncertainty plane (PlaneAxes::
+  // kTargetUncertainty) that the person could not tell apart after all (the caller's measure
+  // of what cells look like, e.g. a grid with no two cells visibly different), the paper's
+  // plane for the same choice instead; returns whether the plane was replaced.
+  bool replace_uncertainty_plane();
+  // Sets options().uncertainty_min_lengths for the next planes. Throws std::invalid_argument
+  // outside [0, 10].
+  void set_uncertainty_min_lengths(double lengths);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most
@@ -231,6 +239,11 @@ class PlaneSearch {
   std::shared_ptr<const SearchHold> hold_;  // shared by copies; const and thread-safe
   int start_overs_ = 0;
   double last_submit_seconds_ = 0.0;
+  // The last submission's choice and whether it was set directly, and whether its plane is an
+  // uncertainty plane (replace_uncertainty_plane; not saved: only right after submit()).
+  Eigen::VectorXd last_choice_;
+  bool last_set_directly_ = false;
+  bool uncertainty_plane_ = false;
   // model.btl_scale as given, restored when the perceptual scale is removed.
   double plain_btl_scale_ = 0.01;
 };

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "sps/bounded_maximizer.hpp"
 
@@ -36,9 +37,31 @@ void validate_target_model(const TargetModel& model, int dims) {
   require(model.population.mean.allFinite() && (model.population.mean.array() >= 0.0).all() &&
               (model.population.mean.array() <= 1.0).all(),
           "the population mean must lie in [0, 1]");
+  const Eigen::MatrixXd& r = model.population.correlation;
+  if (r.size() > 0) {
+    require(r.rows() == n && r.cols() == n, "the population correlation needs " +
+                                                std::to_string(dims) + " x " +
+                                                std::to_string(dims) + " entries");
+    require(r.allFinite() && (r - r.transpose()).cwiseAbs().maxCoeff() < 1e-9 &&
+                (r.diagonal().array() - 1.0).abs().maxCoeff() < 1e-9,
+            "the population correlation must be finite and symmetric with ones on its diagonal");
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(r, Eigen::EigenvaluesOnly);
+    require(eigen.eigenvalues().minCoeff() > 1e-6,
+            "the population correlation must be positive definite");
+  }
   require(std::isfinite(model.temperature_mm) && model.temperature_mm > 0.0 &&
               model.temperature_mm <= 1e4,
           "the choice temperature must lie in (0, 10000] mm");
+}
+
+Eigen::MatrixXd population_precision(const Population& population) {
+  const Eigen::VectorXd inv_sd = population.sd.cwiseInverse();
+  if (population.correlation.size() == 0) return inv_sd.cwiseAbs2().asDiagonal();
+  const Eigen::Index d = population.sd.size();
+  const Eigen::MatrixXd inv_r =
+      population.correlation.ldlt().solve(Eigen::MatrixXd::Identity(d, d));
+  const Eigen::MatrixXd precision = inv_sd.asDiagonal() * inv_r * inv_sd.asDiagonal();
+  return 0.5 * (precision + precision.transpose());
 }
 
 namespace {
@@ -88,9 +111,17 @@ double choice_softmax(const Preference& p, const Eigen::VectorXd& utility,
 double target_log_posterior(const PreferenceData& data, const TargetModel& model,
                             const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
   const PointUtilities u = point_utilities(data, model, t);
-  const Eigen::VectorXd z = (t - model.population.mean).cwiseQuotient(model.population.sd);
-  double value = -0.5 * z.squaredNorm();
-  if (gradient != nullptr) *gradient = -z.cwiseQuotient(model.population.sd);
+  const Eigen::VectorXd offset = t - model.population.mean;
+  double value = 0.0;
+  if (model.population.correlation.size() == 0) {
+    const Eigen::VectorXd z = offset.cwiseQuotient(model.population.sd);
+    value = -0.5 * z.squaredNorm();
+    if (gradient != nullptr) *gradient = -z.cwiseQuotient(model.population.sd);
+  } else {
+    const Eigen::VectorXd pulled = population_precision(model.population) * offset;
+    value = -0.5 * offset.dot(pulled);
+    if (gradient != nullptr) *gradient = -pulled;
+  }
   std::vector<int> members;
   Eigen::VectorXd weight;
   for (const Preference& p : data.preferences()) {
@@ -134,7 +165,7 @@ Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const Ta
   require(t.size() == d && t.allFinite(),
           "the estimate needs " + std::to_string(d) + " finite entries");
   const PointUtilities u = point_utilities(data, model, t);
-  Eigen::MatrixXd information = model.population.sd.cwiseAbs2().cwiseInverse().asDiagonal();
+  Eigen::MatrixXd information = population_precision(model.population);
   std::vector<int> members;
   Eigen::VectorXd weight;
   for (const Preference& p : data.preferences()) {

@@ -15,12 +15,19 @@
 namespace sps {
 
 // Where designs typically lie in the search box and how far they spread, per coordinate
-// (a body model: mean 0.5, SD 1/6, as beta = 6x - 3 is N(0, 1)).
+// (a body model: mean 0.5, SD 1/6, as beta = 6x - 3 is N(0, 1)), and which coordinates
+// typically change together (a photo edit's colour balance across the tones).
 struct Population {
   Eigen::VectorXd mean;
   Eigen::VectorXd sd;
+  // Empty (independent coordinates, as a body model's standardized components are), or the
+  // coordinates' correlation matrix: symmetric, unit diagonal, positive definite.
+  Eigen::MatrixXd correlation;
   bool empty() const { return mean.size() == 0; }
 };
+
+// The population's precision (inverse covariance), in box units. Assumes a validated model.
+Eigen::MatrixXd population_precision(const Population& population);
 
 struct TargetModel {
   Eigen::VectorXd scale;  // perceptual scale: mm of visible change per unit of each coordinate
@@ -31,7 +38,8 @@ struct TargetModel {
 };
 
 // Throws std::invalid_argument naming the first problem: sizes differ from `dims`, a
-// non-finite or non-positive scale or SD, a mean outside [0, 1], a temperature outside
+// non-finite or non-positive scale or SD, a mean outside [0, 1], a correlation matrix that is
+// not symmetric with a unit diagonal or not positive definite, a temperature outside
 // (0, 1e4].
 void validate_target_model(const TargetModel& model, int dims);
 

@@ -18,6 +18,15 @@ Eigen::VectorXd no_edit() {
   return Eigen::VectorXd::Constant(spaces::kPhotoParameters, 0.5);
 }
 
+// A photo session's settings as the window makes them (its 3x3 grid).
+app::SessionSettings photo_settings() {
+  app::SessionSettings settings;
+  settings.space = "photo";
+  settings.components = spaces::kPhotoParameters;
+  settings.grid_size = 3;
+  return settings;
+}
+
 }  // namespace
 
 TEST_CASE("CIEDE2000 matches Sharma, Wu and Dalal's test data", "[photo]") {
@@ -104,10 +113,7 @@ TEST_CASE("a photo session with the colour-difference hook shows no cells closer
   const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
     return distance.pairwise(xs);
   };
-  app::SessionSettings settings;
-  settings.space = "photo";
-  settings.components = spaces::kPhotoParameters;
-  settings.grid_size = 3;  // the window's photo grid
+  app::SessionSettings settings = photo_settings();
   sps::SearchOptions options;
   options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
   int grids = 0;
@@ -142,5 +148,94 @@ TEST_CASE("a photo session with the colour-difference hook shows no cells closer
   }
   INFO(look_alike_grids << " of " << grids << " grids held look-alike cells");
   CHECK(grids >= 12);
+  CHECK(look_alike_grids == 0);
+}
+
+TEST_CASE("the photo population: white-balance shifts across the tones are typical", "[photo]") {
+  const sps::Population p = spaces::photo_population();
+  sps::TargetModel m;
+  m.scale = Eigen::VectorXd::Ones(spaces::kPhotoParameters);
+  m.population = p;
+  REQUIRE_NOTHROW(sps::validate_target_model(m, spaces::kPhotoParameters));
+  const Eigen::MatrixXd& r = p.correlation;
+  // Parameters 3 + 3 band + axis (axes: cyan-red, magenta-green, yellow-blue).
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      if (a != b) CHECK(r(3 + 3 * a, 3 + 3 * b) > 0.4);  // red in one band, red in another
+      CHECK(r(3 + 3 * a, 5 + 3 * b) < -0.2);             // red with yellow (negative: yellow)
+      CHECK(r(4 + 3 * a, 3 + 3 * b) == Approx(0.0));     // tint apart from temperature
+    }
+  }
+  for (int i = 0; i < 3; ++i) {  // brightness, contrast, saturation on their own
+    CHECK(r.row(i).cwiseAbs().sum() == Approx(1.0));
+  }
+}
+
+TEST_CASE(
+    "a photo search as the window runs it: a temperature among the first planes, a "
+    "cooler edit found, no look-alike grids",
+    "[photo][session]") {
+  const spaces::PhotoDistance distance(spaces::default_photo());
+  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
+    return distance.pairwise(xs);
+  };
+  app::SessionSettings settings = photo_settings();
+  sps::SearchOptions options;
+  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
+  options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
+  // "Cooler": every band towards cyan and blue.
+  Eigen::VectorXd target = no_edit();
+  for (int band = 0; band < 3; ++band) {
+    target[3 + 3 * band] = 0.5 - 0.12;
+    target[5 + 3 * band] = 0.5 + 0.18;
+  }
+  const bench::TargetDistance to_target = [&](const std::vector<Eigen::VectorXd>& xs) {
+    return distance.to_target(xs, target);
+  };
+  int grids = 0;
+  int look_alike_grids = 0;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    settings.seed = seed;
+    app::Session session(settings, options);
+    session.set_perceptual_scale(distance.direction_scale());
+    session.set_population(spaces::photo_population());
+    session.set_perceptual_distance(pairwise, spaces::photo_zoom_policy());
+    // One of the first two planes runs along a white-balance temperature: red with yellow (or
+    // cyan with blue) in every band, along u or v (the first: the most visible spreads of the
+    // population, brightness and tint on the built-in picture).
+    const auto has_temperature = [](const sps::Plane& plane) {
+      for (const Eigen::VectorXd& axis : {plane.u, plane.v}) {
+        bool warm = true;
+        for (int band = 0; band < 3; ++band) {
+          warm = warm && axis[3 + 3 * band] * axis[5 + 3 * band] < 0.0 &&
+                 std::abs(axis[3 + 3 * band]) > 0.1 * axis.cwiseAbs().maxCoeff();
+        }
+        if (warm) return true;
+      }
+      return false;
+    };
+    bool temperature_shown = has_temperature(session.search().current_plane());
+    const double start = to_target({session.start_point()}).front();
+    std::mt19937_64 rng(seed);
+    double best = 1e9;
+    for (int plane = 0; plane < 5; ++plane) {
+      const bench::PlaneOutcome outcome = bench::play_plane_jnd(
+          session, to_target, pairwise, spaces::kPhotoJndDeltaE, rng, spaces::kPhotoDistinctDeltaE);
+      grids += outcome.grids;
+      look_alike_grids += outcome.look_alike_grids;
+      best = std::min(best, to_target({outcome.chosen}).front());
+      if (plane == 0) {
+        INFO("second plane u " << session.search().current_plane().u.transpose() << "\nv "
+                               << session.search().current_plane().v.transpose());
+        temperature_shown = temperature_shown || has_temperature(session.search().current_plane());
+        CHECK(temperature_shown);
+      }
+    }
+    INFO("seed " << seed << ": start " << start << ", best after 5 planes " << best);
+    CHECK(best < 0.5 * start);
+  }
+  INFO(look_alike_grids << " of " << grids << " grids held look-alike cells");
+  CHECK(grids >= 15);
   CHECK(look_alike_grids == 0);
 }

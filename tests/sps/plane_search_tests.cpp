@@ -303,7 +303,8 @@ TEST_CASE("a perceptual scale survives the JSON round trip and is validated", "[
                   std::invalid_argument);
   // The person's choice noise set for the planes to come is saved with the search (with the
   // population it estimates the design in mind from).
-  search.set_population({Eigen::Vector3d::Constant(0.5), Eigen::Vector3d::Constant(1.0 / 6.0)});
+  search.set_population(
+      {Eigen::Vector3d::Constant(0.5), Eigen::Vector3d::Constant(1.0 / 6.0), Eigen::MatrixXd()});
   search.set_choice_temperature(6.5);
   CHECK(sps::PlaneSearch::from_json(search.to_json()).options().choice_temperature_mm == 6.5);
   CHECK_THROWS_AS(search.set_choice_temperature(0.0), std::invalid_argument);

@@ -77,6 +77,22 @@ Eigen::VectorXd nearest_on_plane(const sps::Plane& p, const Eigen::VectorXd& goa
   return best;
 }
 
+// The log posterior's gradient at t against central differences, coordinate by coordinate.
+void check_gradient(const sps::PreferenceData& data, const sps::TargetModel& m,
+                    const Eigen::VectorXd& t) {
+  Eigen::VectorXd grad;
+  sps::target_log_posterior(data, m, t, &grad);
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    const double h = 1e-6;
+    const Eigen::VectorXd step = h * Eigen::VectorXd::Unit(t.size(), k);
+    const double fd = (sps::target_log_posterior(data, m, t + step) -
+                       sps::target_log_posterior(data, m, t - step)) /
+                      (2.0 * h);
+    INFO("coordinate " << k << " at " << t.transpose());
+    CHECK(grad(k) == Approx(fd).epsilon(1e-4).margin(1e-4));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("the target log posterior's gradient matches finite differences", "[target]") {
@@ -87,17 +103,7 @@ TEST_CASE("the target log posterior's gradient matches finite differences", "[ta
   const sps::TargetModel m = model_for(scale);
   for (const Eigen::Vector4d& t :
        {Eigen::Vector4d(0.5, 0.5, 0.5, 0.5), Eigen::Vector4d(0.2, 0.7, 0.4, 0.9)}) {
-    Eigen::VectorXd grad;
-    sps::target_log_posterior(data, m, t, &grad);
-    for (Eigen::Index k = 0; k < 4; ++k) {
-      const double h = 1e-6;
-      const Eigen::VectorXd step = h * Eigen::Vector4d::Unit(k);
-      const double fd = (sps::target_log_posterior(data, m, t + step) -
-                         sps::target_log_posterior(data, m, t - step)) /
-                        (2.0 * h);
-      INFO("coordinate " << k);
-      CHECK(grad(k) == Approx(fd).epsilon(1e-4).margin(1e-4));
-    }
+    check_gradient(data, m, t);
   }
 }
 
@@ -179,9 +185,9 @@ TEST_CASE("with a population the plane is centred on the target estimate", "[tar
   restored.submit(restored.current_plane().c);
   CHECK((a.current_plane().c - restored.current_plane().c).norm() < 1e-9);
   // Validated.
-  CHECK_THROWS_AS(search.set_population({Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(0.1, 0.1)}),
+  CHECK_THROWS_AS(search.set_population({Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(0.1, 0.1), {}}),
                   std::invalid_argument);
-  CHECK_THROWS_AS(search.set_population({Eigen::Vector3d(0.5, 1.5, 0.5), m.population.sd}),
+  CHECK_THROWS_AS(search.set_population({Eigen::Vector3d(0.5, 1.5, 0.5), m.population.sd, {}}),
                   std::invalid_argument);
 }
 
@@ -320,4 +326,146 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
   j["options"].erase("plane_axes");  // a file from before: the paper's axes
   CHECK(sps::PlaneSearch::from_json(j.dump()).options().plane_axes ==
         sps::PlaneAxes::kExpectedImprovement);
+}
+
+namespace {
+
+// Coordinates 0 and 1 change together (correlation 0.8), coordinate 2 on its own.
+sps::TargetModel correlated_model_for(const Eigen::Vector3d& scale) {
+  sps::TargetModel m = model_for(scale);
+  m.population.sd = Eigen::Vector3d(0.2, 0.1, 0.15);
+  m.population.correlation = Eigen::Matrix3d::Identity();
+  m.population.correlation(0, 1) = m.population.correlation(1, 0) = 0.8;
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("a correlated population's prior: its precision, gradient and covariance", "[target]") {
+  const Eigen::Vector3d scale(30.0, 60.0, 20.0);
+  const sps::TargetModel m = correlated_model_for(scale);
+  REQUIRE_NOTHROW(sps::validate_target_model(m, 3));
+  const Eigen::Matrix3d covariance =
+      m.population.sd.asDiagonal() * m.population.correlation * m.population.sd.asDiagonal();
+  const Eigen::MatrixXd precision = sps::population_precision(m.population);
+  CHECK((precision * covariance - Eigen::Matrix3d::Identity()).norm() < 1e-9);
+  // Without choices the estimate's uncertainty is the prior's covariance, correlation and all.
+  const sps::PreferenceData none(3);
+  CHECK((sps::target_posterior_covariance(none, m, Eigen::Vector3d::Constant(0.5)) - covariance)
+            .norm() < 1e-9);
+  // The gradient with choices, by finite differences.
+  std::mt19937_64 rng(3);
+  const sps::PreferenceData data = careful_choices(Eigen::Vector3d(0.3, 0.4, 0.7), scale, 10, rng);
+  check_gradient(data, m, Eigen::Vector3d(0.45, 0.6, 0.35));
+  // A choice that says "higher along 0" pulls the estimate up along 1 too, and leaves 2.
+  sps::PreferenceData along(3);
+  const Eigen::Vector3d high(0.75, 0.5, 0.5), low(0.25, 0.5, 0.5);
+  for (int k = 0; k < 3; ++k) along.add_preference(high, {Eigen::Vector3d::Constant(0.5), low});
+  const Eigen::VectorXd e = sps::estimate_target(along, m, Eigen::Vector3d::Constant(0.5));
+  CHECK(e(0) > 0.55);
+  CHECK(e(1) > 0.53);
+  CHECK(e(2) == Approx(0.5).margin(1e-3));
+  CHECK(sps::estimate_target(along, model_for(scale), Eigen::Vector3d::Constant(0.5))(1) ==
+        Approx(0.5).margin(1e-3));
+}
+
+TEST_CASE("a malformed population correlation is refused with a message", "[target]") {
+  const sps::TargetModel good = correlated_model_for(Eigen::Vector3d(30.0, 60.0, 20.0));
+  sps::TargetModel bad = good;
+  bad.population.correlation = Eigen::Matrix2d::Identity();
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("correlation"));
+  bad = good;
+  bad.population.correlation(0, 1) = 0.5;  // not symmetric
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("symmetric"));
+  bad = good;
+  bad.population.correlation(2, 2) = 2.0;
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("diagonal"));
+  bad = good;
+  bad.population.correlation(0, 1) = bad.population.correlation(1, 0) = 1.0;  // singular
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("positive definite"));
+  bad = good;
+  bad.population.correlation(1, 2) = bad.population.correlation(2, 1) = std::nan("");
+  CHECK_THROWS_AS(sps::validate_target_model(bad, 3), std::invalid_argument);
+}
+
+TEST_CASE("a correlated population gives the first plane its principal axes, saved and read back",
+          "[target][search]") {
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = 4;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(40.0, 40.0, 40.0);
+  o.min_plane_length = 5.0;
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::PlaneSearch search(o);
+  const sps::TargetModel m = correlated_model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  sps::Plane first;
+  REQUIRE(search.use_visible_first_plane());
+  first = search.current_plane();
+  // The widest spread of S Cov S runs along coordinates 0 and 1 together (same sign).
+  const Eigen::VectorXd u = first.u.normalized();
+  CHECK(std::abs(u(2)) < 1e-6);
+  CHECK(u(0) * u(1) > 0.0);
+  CHECK(std::abs(u(0)) > 0.3);
+  CHECK(std::abs(u(1)) > 0.3);
+  // With independent coordinates, or the paper's axes, the most visible coordinates instead.
+  sps::PlaneSearch independent(o);
+  independent.set_population(model_for(o.perceptual_scale).population);
+  REQUIRE(independent.use_visible_first_plane());
+  const sps::Plane visible = sps::visible_first_plane(o.perceptual_scale);
+  CHECK((independent.current_plane().u - visible.u).norm() < 1e-12);
+  o.plane_axes = sps::PlaneAxes::kExpectedImprovement;
+  sps::PlaneSearch paper(o);
+  paper.set_population(m.population);
+  REQUIRE(paper.use_visible_first_plane());
+  CHECK((paper.current_plane().u - visible.u).norm() < 1e-12);
+
+  // The correlation is saved; a file from before has none; a broken one is refused.
+  search.submit(first.c);
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  REQUIRE(restored.options().population.correlation.rows() == 3);
+  CHECK((restored.options().population.correlation - m.population.correlation).norm() < 1e-12);
+  auto j = nlohmann::json::parse(search.to_json());
+  j["options"]["population_correlation"][1] = 0.3;  // (0, 1) no longer equals (1, 0)
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("symmetric"));
+  j["options"]["population_correlation"] = {1.0, 0.8};
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()),
+                    Catch::Contains("population_correlation"));
+  j["options"].erase("population_correlation");
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().population.correlation.size() == 0);
+}
+
+TEST_CASE("an uncertainty plane the person cannot tell apart gives way to the paper's plane",
+          "[target][search]") {
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = 12;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::PlaneSearch search(o);
+  o.plane_axes = sps::PlaneAxes::kExpectedImprovement;
+  sps::PlaneSearch paper(o);
+  const sps::TargetModel m = model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  paper.set_population(m.population);
+  const Eigen::Vector3d goal(0.4, 0.6, 0.45);
+  const Eigen::VectorXd click = nearest_on_plane(search.current_plane(), goal, o.perceptual_scale);
+  search.submit(click);
+  paper.submit(click);
+  const sps::Plane uncertain = search.current_plane();
+  REQUIRE((uncertain.u - paper.current_plane().u).norm() > 1e-6);
+  // Replaced by the plane the paper's axes give for the same choice, once.
+  REQUIRE(search.replace_uncertainty_plane());
+  CHECK((search.current_plane().c - paper.current_plane().c).norm() < 1e-9);
+  CHECK((search.current_plane().u - paper.current_plane().u).norm() < 1e-9);
+  CHECK((search.current_plane().v - paper.current_plane().v).norm() < 1e-9);
+  CHECK(search.options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
+  CHECK_FALSE(search.replace_uncertainty_plane());
+  // Nothing to replace after an undo, nor for a search on the paper's axes.
+  search.submit(click);
+  REQUIRE(search.undo());
+  CHECK_FALSE(search.replace_uncertainty_plane());
+  CHECK_FALSE(paper.replace_uncertainty_plane());
 }
