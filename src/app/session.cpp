@@ -254,13 +254,6 @@ void Session::set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
   update_views();
 }
 
-void Session::retake_first_plane() {
-  if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
-    start_point_ = search_.current_plane().c;
-    update_views();
-  }
-}
-
 void Session::set_population(const sps::Population& population) {
   search_.set_population(population);
   retake_first_plane();
@@ -381,6 +374,15 @@ bool same_plane(const sps::Plane& a, const sps::Plane& b) {
 }
 
 }  // namespace
+
+void Session::retake_first_plane() {
+  const sps::Plane before = search_.current_plane();
+  if (path_.empty() && history_.empty() && search_.use_visible_first_plane() &&
+      !same_plane(before, search_.current_plane())) {
+    start_point_ = search_.current_plane().c;
+    update_views();
+  }
+}
 
 void Session::set_constraint_projector(std::shared_ptr<const ConstraintProjector> projector) {
   projector_ = std::move(projector);

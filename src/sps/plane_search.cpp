@@ -325,11 +325,10 @@ bool PlaneSearch::visible_start(Plane& plane) const {
   if (!hold_ && options_.method == Method::kSps &&
       options_.plane_axes == PlaneAxes::kTargetUncertainty && !population.empty() &&
       population.correlation.size() > 0) {
-    const Eigen::MatrixXd covariance =
-        population.sd.asDiagonal() * population.correlation * population.sd.asDiagonal();
-    if (auto first = uncertainty_plane(
-            population.mean, covariance, options_.perceptual_scale, options_.uncertainty_extent,
-            options_.uncertainty_min_lengths * options_.min_plane_length)) {
+    if (auto first =
+            uncertainty_plane(population.mean, population_covariance(population),
+                              options_.perceptual_scale, options_.uncertainty_extent,
+                              options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane = *first;
       return true;
     }

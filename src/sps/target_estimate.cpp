@@ -54,6 +54,11 @@ void validate_target_model(const TargetModel& model, int dims) {
           "the choice temperature must lie in (0, 10000] mm");
 }
 
+Eigen::MatrixXd population_covariance(const Population& population) {
+  if (population.correlation.size() == 0) return population.sd.cwiseAbs2().asDiagonal();
+  return population.sd.asDiagonal() * population.correlation * population.sd.asDiagonal();
+}
+
 Eigen::MatrixXd population_precision(const Population& population) {
   const Eigen::VectorXd inv_sd = population.sd.cwiseInverse();
   if (population.correlation.size() == 0) return inv_sd.cwiseAbs2().asDiagonal();
@@ -106,22 +111,16 @@ double choice_softmax(const Preference& p, const Eigen::VectorXd& utility,
   return top + std::log(sum);
 }
 
-}  // namespace
-
-double target_log_posterior(const PreferenceData& data, const TargetModel& model,
-                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+// target_log_posterior with the population's precision given (the estimate's optimizer
+// calls it many times with one model).
+double log_posterior(const PreferenceData& data, const TargetModel& model,
+                     const Eigen::MatrixXd& precision, const Eigen::VectorXd& t,
+                     Eigen::VectorXd* gradient) {
   const PointUtilities u = point_utilities(data, model, t);
   const Eigen::VectorXd offset = t - model.population.mean;
-  double value = 0.0;
-  if (model.population.correlation.size() == 0) {
-    const Eigen::VectorXd z = offset.cwiseQuotient(model.population.sd);
-    value = -0.5 * z.squaredNorm();
-    if (gradient != nullptr) *gradient = -z.cwiseQuotient(model.population.sd);
-  } else {
-    const Eigen::VectorXd pulled = population_precision(model.population) * offset;
-    value = -0.5 * offset.dot(pulled);
-    if (gradient != nullptr) *gradient = -pulled;
-  }
+  const Eigen::VectorXd pulled = precision * offset;
+  double value = -0.5 * offset.dot(pulled);
+  if (gradient != nullptr) *gradient = -pulled;
   std::vector<int> members;
   Eigen::VectorXd weight;
   for (const Preference& p : data.preferences()) {
@@ -136,6 +135,13 @@ double target_log_posterior(const PreferenceData& data, const TargetModel& model
   return value;
 }
 
+}  // namespace
+
+double target_log_posterior(const PreferenceData& data, const TargetModel& model,
+                            const Eigen::VectorXd& t, Eigen::VectorXd* gradient) {
+  return log_posterior(data, model, population_precision(model.population), t, gradient);
+}
+
 Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& model,
                                 const Eigen::VectorXd& start) {
   validate_target_model(model, data.dims());
@@ -144,8 +150,9 @@ Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& m
   const Eigen::VectorXd upper = Eigen::VectorXd::Ones(d);
   const Eigen::VectorXd typical = model.population.mean.cwiseMax(0.0).cwiseMin(1.0);
   if (data.preference_count() == 0) return typical;
+  const Eigen::MatrixXd precision = population_precision(model.population);
   const Objective objective = [&](const Eigen::VectorXd& t, Eigen::VectorXd& gradient) {
-    return target_log_posterior(data, model, t, &gradient);
+    return log_posterior(data, model, precision, t, &gradient);
   };
   MaximizeResult best;
   best.value = -std::numeric_limits<double>::infinity();

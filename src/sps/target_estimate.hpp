@@ -26,7 +26,9 @@ struct Population {
   bool empty() const { return mean.size() == 0; }
 };
 
-// The population's precision (inverse covariance), in box units. Assumes a validated model.
+// The population's covariance and its precision (inverse), in box units. Assume a validated
+// population.
+Eigen::MatrixXd population_covariance(const Population& population);
 Eigen::MatrixXd population_precision(const Population& population);
 
 struct TargetModel {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "app/session.hpp"
@@ -18,13 +19,21 @@ Eigen::VectorXd no_edit() {
   return Eigen::VectorXd::Constant(spaces::kPhotoParameters, 0.5);
 }
 
-// A photo session's settings as the window makes them (its 3x3 grid).
-app::SessionSettings photo_settings() {
+// A photo session on the window's 3x3 grid with the photo space's hooks installed, as the
+// window installs them: its perceptual scale, population and colour-difference zoom.
+app::Session photo_session(std::uint64_t seed, const sps::SearchOptions& options,
+                           const spaces::PhotoDistance& distance,
+                           const app::PairwiseDistance& pairwise) {
   app::SessionSettings settings;
   settings.space = "photo";
   settings.components = spaces::kPhotoParameters;
   settings.grid_size = 3;
-  return settings;
+  settings.seed = seed;
+  app::Session session(settings, options);
+  session.set_perceptual_scale(distance.direction_scale());
+  session.set_population(spaces::photo_population());
+  session.set_perceptual_distance(pairwise, spaces::photo_zoom_policy());
+  return session;
 }
 
 }  // namespace
@@ -113,17 +122,12 @@ TEST_CASE("a photo session with the colour-difference hook shows no cells closer
   const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
     return distance.pairwise(xs);
   };
-  app::SessionSettings settings = photo_settings();
   sps::SearchOptions options;
   options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
   int grids = 0;
   int look_alike_grids = 0;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    settings.seed = seed;
-    app::Session session(settings, options);
-    session.set_perceptual_scale(distance.direction_scale());
-    session.set_population(spaces::photo_population());
-    session.set_perceptual_distance(pairwise, spaces::photo_zoom_policy());
+    app::Session session = photo_session(seed, options, distance, pairwise);
     Eigen::VectorXd target = no_edit();
     target[0] = 0.7;
     target[6] = 0.65;
@@ -179,7 +183,6 @@ TEST_CASE(
   const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
     return distance.pairwise(xs);
   };
-  app::SessionSettings settings = photo_settings();
   sps::SearchOptions options;
   options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
   options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
@@ -196,11 +199,7 @@ TEST_CASE(
   int grids = 0;
   int look_alike_grids = 0;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    settings.seed = seed;
-    app::Session session(settings, options);
-    session.set_perceptual_scale(distance.direction_scale());
-    session.set_population(spaces::photo_population());
-    session.set_perceptual_distance(pairwise, spaces::photo_zoom_policy());
+    app::Session session = photo_session(seed, options, distance, pairwise);
     // One of the first two planes runs along a white-balance temperature: red with yellow (or
     // cyan with blue) in every band, along u or v (the first: the most visible spreads of the
     // population, brightness and tint on the built-in picture).

@@ -347,6 +347,7 @@ TEST_CASE("a correlated population's prior: its precision, gradient and covarian
   REQUIRE_NOTHROW(sps::validate_target_model(m, 3));
   const Eigen::Matrix3d covariance =
       m.population.sd.asDiagonal() * m.population.correlation * m.population.sd.asDiagonal();
+  CHECK((sps::population_covariance(m.population) - covariance).norm() < 1e-12);
   const Eigen::MatrixXd precision = sps::population_precision(m.population);
   CHECK((precision * covariance - Eigen::Matrix3d::Identity()).norm() < 1e-9);
   // Without choices the estimate's uncertainty is the prior's covariance, correlation and all.
