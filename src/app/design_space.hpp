@@ -106,11 +106,10 @@ class SpacePerception {
   // With population(): what the planes' axes follow for a person in front of the window
   // (sps::SearchOptions::plane_axes).
   virtual sps::PlaneAxes plane_axes() const { return sps::PlaneAxes::kExpectedImprovement; }
-  // With uncertainty planes: their smallest length in units of min_plane_length
-  // (sps::SearchOptions::uncertainty_min_lengths).
-  virtual double uncertainty_min_lengths() const {
-    return sps::SearchOptions{}.uncertainty_min_lengths;
-  }
+  // With uncertainty planes: their half-diagonals in standard deviations of the estimate and
+  // their smallest length in units of min_plane_length (sps::SearchOptions::
+  // uncertainty_extent, uncertainty_min_lengths).
+  virtual sps::UncertaintyPlaneSize uncertainty_size() const { return {}; }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const = 0;

@@ -581,7 +581,7 @@ void GalleryController::install_perception() {
       if (const double t = perception->choice_temperature(cell_pixels_); t > 0.0) {
         session_->set_choice_temperature(t);
       }
-      session_->set_uncertainty_min_lengths(perception->uncertainty_min_lengths());
+      session_->set_uncertainty_size(perception->uncertainty_size());
       session_->set_plane_axes(perception->plane_axes());
     }
   }

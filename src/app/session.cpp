@@ -264,8 +264,8 @@ void Session::set_plane_axes(sps::PlaneAxes axes) {
   retake_first_plane();
 }
 
-void Session::set_uncertainty_min_lengths(double lengths) {
-  search_.set_uncertainty_min_lengths(lengths);
+void Session::set_uncertainty_size(const sps::UncertaintyPlaneSize& size) {
+  search_.set_uncertainty_size(size);
   retake_first_plane();
 }
 

@@ -150,9 +150,10 @@ class Session {
   void set_choice_temperature(double mm) { search_.set_choice_temperature(mm); }
   // The axes of the next planes (sps::SearchOptions::plane_axes; saved with the search).
   void set_plane_axes(sps::PlaneAxes axes);
-  // How long uncertainty planes are at least, in units of the smallest plane length
-  // (sps::SearchOptions::uncertainty_min_lengths; saved with the search).
-  void set_uncertainty_min_lengths(double lengths);
+  // How large uncertainty planes are: standard deviations along each axis and at least how
+  // many smallest plane lengths (sps::SearchOptions::uncertainty_extent and
+  // uncertainty_min_lengths; saved with the search).
+  void set_uncertainty_size(const sps::UncertaintyPlaneSize& size);
 
   // Holds (app/constraint_projector.hpp): with a projector every plane shown is the
   // held plane and every cell (and so every point the optimizer learns from) is projected

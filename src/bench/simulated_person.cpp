@@ -46,6 +46,10 @@ PlaneOutcome play_plane_jnd(app::Session& session, const TargetDistance& to_targ
     std::vector<Eigen::VectorXd> xs;
     for (auto& p : session.cells()) xs.push_back(std::move(p.x));
     ++out.grids;
+    for (const auto& x : xs) {
+      ++out.cells;
+      if (pinned_fraction(x) > 0.0) ++out.edge_cells;
+    }
     if (look_alikes && has_look_alikes(look_alikes(xs), clone_mm)) ++out.look_alike_grids;
     const int index = jnd_pick(to_target(xs), jnd_mm, rng);
     if (session.click({index % n, index / n}) == app::ClickResult::kIgnored) {

@@ -32,6 +32,8 @@ struct PlaneOutcome {
   Eigen::VectorXd chosen;    // the submitted choice
   int grids = 0;             // grids the user clicked on
   int look_alike_grids = 0;  // of those, grids with look-alike cells
+  int cells = 0;             // cells on those grids
+  int edge_cells = 0;        // of those, cells with a parameter at the edge of its range
   double optimizer_seconds = 0.0;
 };
 

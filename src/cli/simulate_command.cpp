@@ -50,7 +50,8 @@ options:
                       expected-improvement (the paper's) | uncertainty (where that estimate is
                       least certain); default: the window's (uncertainty for --jnd-px and for
                       photos, else the paper's)
-  --uncertainty-extent X   half-diagonals of uncertainty planes in SDs (default 5)
+  --uncertainty-extent X   half-diagonals of uncertainty planes in SDs (default 5;
+                      photos 3)
   --uncertainty-min-lengths N  their smallest side, in smallest plane lengths (default 3;
                       photos 1)
   --threads N         optimizer threads (default 2)

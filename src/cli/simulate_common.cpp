@@ -108,8 +108,13 @@ void play_trial(app::Session& session, const bench::TargetDistance& to_target,
   for (std::size_t i = 0; i < results.gaps.size(); ++i) {
     const bench::PlaneOutcome plane =
         bench::play_plane_jnd(session, seen ? seen : to_target, look_alikes, jnd, user_rng, clone);
-    best = std::min(best, to_target({plane.chosen}).front());
+    const double picked = to_target({plane.chosen}).front();
+    best = std::min(best, picked);
     results.gaps[i].push_back(best);
+    results.last_pick_gaps[i].push_back(picked);
+    results.saved_gaps[i].push_back(to_target({session.current_best()}).front());
+    results.cells[i].push_back(plane.cells);
+    results.edge_cells[i].push_back(plane.edge_cells);
     results.seconds[i].push_back(plane.optimizer_seconds);
     results.look_alike_grids[i].push_back(plane.look_alike_grids);
     results.grids[i].push_back(plane.grids);
@@ -120,7 +125,11 @@ void play_trial(app::Session& session, const bench::TargetDistance& to_target,
 SimulationResults::SimulationResults(int iterations, int seed, bool body)
     : first_seed(seed),
       gaps(static_cast<std::size_t>(iterations)),
-      seconds(static_cast<std::size_t>(iterations)) {
+      seconds(static_cast<std::size_t>(iterations)),
+      saved_gaps(static_cast<std::size_t>(iterations)),
+      last_pick_gaps(static_cast<std::size_t>(iterations)),
+      cells(static_cast<std::size_t>(iterations)),
+      edge_cells(static_cast<std::size_t>(iterations)) {
   if (body) {
     look_alike_grids.resize(static_cast<std::size_t>(iterations));
     grids.resize(static_cast<std::size_t>(iterations));
@@ -132,10 +141,13 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
                               const SimulationResults& r) {
   const std::size_t iterations = r.gaps.size();
   const std::size_t trials = iterations == 0 ? 0 : r.gaps.front().size();
+  // The synthetic functions have no window whose save could be measured.
+  const bool with_saved = trials > 0 && r.saved_gaps.front().size() == trials;
   if (const auto path = args.get("per-trial-csv")) {
     std::ostringstream out;  // written atomically below
     out << "trial,seed,iteration,gap_best_so_far,optimizer_seconds"
-        << (r.body() ? ",look_alike_grids,grids,pinned_fraction" : "") << "\n"
+        << (r.body() ? ",look_alike_grids,grids,pinned_fraction" : "")
+        << (with_saved ? ",saved_gap,last_pick_gap,cells,edge_cells" : "") << "\n"
         << std::setprecision(17);
     for (std::size_t trial = 0; trial < trials; ++trial) {
       for (std::size_t it = 0; it < iterations; ++it) {
@@ -144,6 +156,10 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
         if (r.body()) {
           out << "," << r.look_alike_grids[it][trial] << "," << r.grids[it][trial] << ","
               << r.pinned[it][trial];
+        }
+        if (with_saved) {
+          out << "," << r.saved_gaps[it][trial] << "," << r.last_pick_gaps[it][trial] << ","
+              << r.cells[it][trial] << "," << r.edge_cells[it][trial];
         }
         out << "\n";
       }
@@ -154,11 +170,16 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
   std::ostringstream csv;  // written atomically at the end
   if (csv_path) {
     csv << "iteration,mean_gap,sd_gap,median_gap,mean_optimizer_seconds,median_optimizer_seconds"
-        << (r.body() ? ",duplicate_grids,pinned_fraction" : "") << "\n";
+        << (r.body() ? ",duplicate_grids,pinned_fraction" : "")
+        << (with_saved ? ",mean_saved_gap,median_saved_gap,mean_last_pick_gap,median_last_pick_gap,"
+                         "edge_cells"
+                       : "")
+        << "\n";
   }
   std::cout << title << "\n";
   std::cout << "iteration  mean_gap      sd_gap        median_gap    median_seconds"
-            << (r.body() ? "  duplicate_grids  pinned_fraction" : "") << "\n";
+            << (r.body() ? "  duplicate_grids  pinned_fraction" : "")
+            << (with_saved ? "  median_saved  median_last_pick  edge_cells" : "") << "\n";
   for (std::size_t it = 0; it < iterations; ++it) {
     const auto& v = r.gaps[it];
     const double m = mean(v);
@@ -179,11 +200,22 @@ void write_simulation_results(const ArgParser& args, const std::string& title,
     if (r.body()) {
       std::cout << "    " << std::setw(13) << duplicates << "  " << std::setw(15) << pinned;
     }
+    const double shown_cells = with_saved ? sum(r.cells[it]) : 0.0;
+    const double edges = shown_cells > 0.0 ? sum(r.edge_cells[it]) / shown_cells : 0.0;
+    if (with_saved) {
+      std::cout << std::scientific << std::setprecision(4) << "  " << median(r.saved_gaps[it])
+                << "    " << median(r.last_pick_gaps[it]) << "        " << std::fixed
+                << std::setprecision(4) << edges;
+    }
     std::cout << "\n";
     if (csv_path) {
       csv << (it + 1) << "," << std::setprecision(10) << std::scientific << m << "," << sd << ","
           << med << "," << mean(r.seconds[it]) << "," << sec;
       if (r.body()) csv << "," << duplicates << "," << pinned;
+      if (with_saved) {
+        csv << "," << mean(r.saved_gaps[it]) << "," << median(r.saved_gaps[it]) << ","
+            << mean(r.last_pick_gaps[it]) << "," << median(r.last_pick_gaps[it]) << "," << edges;
+      }
       csv << "\n";
     }
   }

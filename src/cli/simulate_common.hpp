@@ -23,6 +23,14 @@ struct SimulationResults {
   // [iteration][trial]
   std::vector<std::vector<double>> gaps;
   std::vector<std::vector<double>> seconds;
+  // The gap of what the window would save after each plane (the session's current best once
+  // the next plane is shown), and of the cell picked last: the best chosen so far in `gaps` is
+  // known only to the benchmark, which knows the target.
+  std::vector<std::vector<double>> saved_gaps;
+  std::vector<std::vector<double>> last_pick_gaps;
+  // Cells shown and, of those, cells with a parameter at the edge of its range (clamped).
+  std::vector<std::vector<double>> cells;
+  std::vector<std::vector<double>> edge_cells;
   // Body benchmark only (empty otherwise): grids shown with look-alike cells and grids shown,
   // and the pinned fraction of the current best, [iteration][trial].
   std::vector<std::vector<double>> look_alike_grids;
@@ -35,8 +43,10 @@ struct SimulationResults {
 
 // One trial of the body or photo benchmark: the simulated person (bench::play_plane_jnd, its
 // own random stream from `trial_seed`) plays `results`' iterations on `session`, each plane
-// recorded as the best gap so far, the optimizer's time, the grids and look-alike grids shown
-// (closer than `clone` by `look_alikes`) and the pinned fraction of the current best. The
+// recorded as the best gap so far, the gaps of the last pick and of what the window would save
+// (the session's current best once the next plane is shown), the optimizer's time, the grids
+// and look-alike grids shown (closer than `clone` by `look_alikes`), the cells shown and those
+// clamped at an edge of the box, and the pinned fraction of the current best. The
 // person judges the cells by `seen` (their visible distance to the target) when given, else by
 // `to_target`, which is always the gap.
 void play_trial(app::Session& session, const bench::TargetDistance& to_target,

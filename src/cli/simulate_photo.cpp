@@ -145,6 +145,7 @@ int run_photo_simulation(const ArgParser& args) {
   sps::SearchOptions options = read_search_options(args);
   // The window's planes for photos (spaces::PhotoSpace::plane_axes), unless told otherwise.
   if (!args.has("plane-axes")) options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  if (!args.has("uncertainty-extent")) options.uncertainty_extent = spaces::kPhotoUncertaintyExtent;
   if (!args.has("uncertainty-min-lengths")) {
     options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
   }

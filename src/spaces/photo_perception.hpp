@@ -56,6 +56,14 @@ constexpr double kPhotoMinPlaneDeltaE = 20.0;
 // least one smallest plane length long (the bodies' 3 lengths would ask for 60 Delta E, which
 // most edits of the box cannot show). Photo benchmark, docs/benchmarks.md.
 constexpr double kPhotoUncertaintyMinLengths = 1.0;
+// ... and their half-diagonals 3 standard deviations of the estimate, not the bodies' 5. On the
+// built-in picture the smallest length then decides every plane (at 2 the benchmark's runs are
+// the same to the last digit), the first one included, which at 5 reaches far beyond the box:
+// 43 % of plane 1's cells (all zoom levels) clamped at an end of a range, against 16 % at 3,
+// and a few first grids that cannot be told apart (at most 0.7 % of a plane's grids; at 3 none
+// on three of the four tasks). The gaps are the same on 60 people (mean Delta E at plane 10,
+// summed over the four targets: 7.86 at 3, 7.91 at 5). Photo benchmark, docs/benchmarks.md.
+constexpr double kPhotoUncertaintyExtent = 3.0;
 
 // The session's zoom rules for photos, in Delta E where a body's are in millimetres: no grid
 // shown holds two edits closer than `distinct` and no zoom step makes neighbours closer than

@@ -236,11 +236,15 @@ void PlaneSearch::set_choice_temperature(double mm) {
   options_.choice_temperature_mm = mm;
 }
 
-void PlaneSearch::set_uncertainty_min_lengths(double lengths) {
-  if (!(lengths >= 0.0 && lengths <= 10.0)) {
+void PlaneSearch::set_uncertainty_size(const UncertaintyPlaneSize& size) {
+  if (!(size.extent >= 0.1 && size.extent <= 10.0)) {
+    throw std::invalid_argument("the uncertainty planes' extent must lie in [0.1, 10]");
+  }
+  if (!(size.min_lengths >= 0.0 && size.min_lengths <= 10.0)) {
     throw std::invalid_argument("the uncertainty planes' smallest length must lie in [0, 10]");
   }
-  options_.uncertainty_min_lengths = lengths;
+  options_.uncertainty_extent = size.extent;
+  options_.uncertainty_min_lengths = size.min_lengths;
 }
 
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {

@@ -99,6 +99,13 @@ struct SearchOptions {
   double uncertainty_min_lengths = 3.0;
 };
 
+// How large uncertainty planes are (SearchOptions::uncertainty_extent and
+// uncertainty_min_lengths), as a design space asks for them.
+struct UncertaintyPlaneSize {
+  double extent = SearchOptions{}.uncertainty_extent;
+  double min_lengths = SearchOptions{}.uncertainty_min_lengths;
+};
+
 // The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane
 // spans the two most visible directions over +-2.4 standard deviations for a body model.
 constexpr double kVisibleFirstPlaneExtent = 0.4;
@@ -194,9 +201,9 @@ class PlaneSearch {
   // of what cells look like, e.g. a grid with no two cells visibly different), the paper's
   // plane for the same choice instead; returns whether the plane was replaced.
   bool replace_uncertainty_plane();
-  // Sets options().uncertainty_min_lengths for the next planes. Throws std::invalid_argument
-  // outside [0, 10].
-  void set_uncertainty_min_lengths(double lengths);
+  // Sets options().uncertainty_extent and uncertainty_min_lengths for the next planes. Throws
+  // std::invalid_argument outside [0.1, 10] and [0, 10].
+  void set_uncertainty_size(const UncertaintyPlaneSize& size);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
   // projected onto it, x_EI and v in its tangent space, the first plane along its most

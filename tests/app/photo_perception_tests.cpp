@@ -187,6 +187,7 @@ TEST_CASE(
   options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
   options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
   options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
+  options.uncertainty_extent = spaces::kPhotoUncertaintyExtent;
   // "Cooler": every band towards cyan and blue.
   Eigen::VectorXd target = no_edit();
   for (int band = 0; band < 3; ++band) {

@@ -40,13 +40,19 @@ out=$("$bin" simulate --function body --components 4 --trials 2 --iterations 3 -
       --csv "$dir/b.csv" --per-trial-csv "$dir/bp.csv")
 echo "$out"
 [ "$(echo "$out" | grep -cE '^ +[0-9]+ ')" = 3 ] || fail "body: expected 3 iteration rows"
-grep -q "^iteration,mean_gap,sd_gap,median_gap,.*,duplicate_grids,pinned_fraction$" \
+grep -q "^iteration,mean_gap,sd_gap,median_gap,.*,duplicate_grids,pinned_fraction,mean_saved_gap,median_saved_gap,mean_last_pick_gap,median_last_pick_gap,edge_cells$" \
   <<<"$(head -1 "$dir/b.csv")" || fail "body CSV header"
 awk -F, 'NR==1 { n=NF } NF != n { exit 1 }' "$dir/b.csv" || fail "body CSV rows do not match the header"
 [ "$(wc -l < "$dir/bp.csv")" = 7 ] || fail "body per-trial CSV should have a header and 6 rows"
 # Gaps are distances in mm: positive, never growing; fractions lie in [0, 1].
 awk -F, 'NR>1 { if ($2 <= 0 || (NR>2 && $2 > prev + 1e-9) || $7 < 0 || $7 > 1 || $8 < 0 || $8 > 1) bad=1; prev=$2 }
          END { exit bad }' "$dir/b.csv" || fail "body gaps or fractions out of range"
+# What the window would save and the last pick are bodies too (gaps > 0); the best pick so far
+# is never behind the last pick; edge cells are a fraction.
+awk -F, 'NR>1 { if ($9 <= 0 || $11 < $2 - 1e-9 || $13 < 0 || $13 > 1) bad=1 }
+         END { exit bad }' "$dir/b.csv" || fail "body saved / last-pick gaps or edge cells out of range"
+grep -q "^trial,seed,iteration,gap_best_so_far,.*,saved_gap,last_pick_gap,cells,edge_cells$" \
+  <<<"$(head -1 "$dir/bp.csv")" || fail "body per-trial CSV header"
 "$bin" simulate --function body --components 3 --target-betas 1 -0.5 --method sls --trials 1 \
   --iterations 2 --quiet > /dev/null || fail "body with fixed target and sls"
 # The built-in female and male models are searched, not the neutral one in their place: the
@@ -102,7 +108,8 @@ grep -qE "JND 20\.4[0-9]* mm = 2 px in a 210 px cell; look-alikes under 20\.4" <
 out=$("$bin" simulate --function photo --trials 2 --iterations 3 --quiet --csv "$dir/photo.csv")
 grep -q "on photo (built-in landscape, 12 parameters), user zoom-jnd (3x3, 4 levels, JND 2.3" \
   <<<"$out" || fail "photo title: $out"
-head -1 "$dir/photo.csv" | grep -q "duplicate_grids" || fail "photo csv has no duplicate_grids"
+head -1 "$dir/photo.csv" | grep -q "duplicate_grids,.*,edge_cells$" ||
+  fail "photo csv has no duplicate_grids or edge_cells"
 awk -F, 'NR > 1 { if ($2 <= 0 || $2 > 60) exit 1 }' "$dir/photo.csv" ||
   fail "photo gap outside (0, 60] Delta E: $(cat "$dir/photo.csv")"
 named=$("$bin" simulate --function photo --target warmer-brighter --trials 1 --iterations 2 --quiet)
