@@ -239,8 +239,8 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
     arrays.push_back(make_array("J", "<f4", {std::size_t(J), 3}, j));
   }
   {
-    // The limbs' correctives are the template's; the shoulders', hips' and head's are fitted
-    // on this model's mean body, whose arms and neck are not the template's.
+    // The limbs' correctives are the template's; the shoulders', hips', head's and fingers' are
+    // fitted on this model's mean body, whose arms, neck and hands are not the template's.
     Eigen::MatrixXf posedirs = tpl.posedirs;
     {
       std::vector<Vec3> rest(V);

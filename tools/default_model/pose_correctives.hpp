@@ -31,14 +31,14 @@ struct PoseCorrectiveReport {
 
 // 3V x 9 (J - 1), row 3v + axis, column 9 (j - 1) + 3 r + c for entry (r, c) of R_j - I. The
 // elbows, knees and ankles get correctives fitted to the posed template; every other column is
-// 0 until fit_rotation_share_correctives() fills the shoulders', hips' and head's.
+// 0 until fit_rotation_share_correctives() fills the shoulders', hips', head's and fingers'.
 Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& mesh,
                                      const SmplxRig& rig, const Eigen::MatrixXd& weights,
                                      int threads, PoseCorrectiveReport* report = nullptr);
 
-// Fits the shoulders', hips' and head's columns of `posedirs` on a rest body of the template's
-// topology (a model's mean body, with `rig`'s joints at that body's joints): each blend-zone
-// vertex turned by its share of the rotation. Their offsets are a share of each vertex's
+// Fits the shoulders', hips', head's and finger joints' columns of `posedirs` on a rest body of
+// the template's topology (a model's mean body, with `rig`'s joints at that body's joints): each
+// blend-zone vertex turned by its share of the rotation. Their offsets are a share of each vertex's
 // distance from the joint, so they are fitted per model (slimmer arms than the template's need
 // smaller ones). Adds their counts to `report`.
 void fit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,

@@ -17,7 +17,7 @@ namespace default_model {
 namespace {
 
 constexpr int kBodyJoints = 22;  // SMPL's and SMPL-X's common first joints
-constexpr int kJaw = 22, kLeftEye = 23, kRightEye = 24, kHandsBegin = 25;
+constexpr int kJaw = 22, kLeftEye = 23, kRightEye = 24;
 constexpr double kTrunkRadius = 0.14;
 
 }  // namespace
@@ -65,7 +65,7 @@ SmplxRig smplx_rig(const Mannequin& mannequin) {
       const FingerChain& chain = lm.fingers[s][f];
       if (f < 4) rig.segments[wrist].push_back({sk.joints[wrist], chain.points[0], 0.018});
       for (int k = 0; k < 3; ++k) {
-        const int j = kHandsBegin + 15 * s + 3 * f + k;
+        const int j = kSmplxHandsBegin + 15 * s + 3 * f + k;
         rig.parents[j] = k == 0 ? wrist : j - 1;
         rig.joints[j] = chain.points[k];
         rig.segments[j].push_back({chain.points[k], chain.points[k + 1], f == 4 ? 0.011 : 0.008});

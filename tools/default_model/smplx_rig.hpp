@@ -18,6 +18,11 @@
 
 namespace default_model {
 
+// SMPL-X's finger joints: kSmplxHandsBegin + 15 side + 3 finger + k (side 0 = left; fingers in
+// SMPL-X's order index, middle, pinky, ring, thumb; k = 0 at the knuckle).
+constexpr int kSmplxHandsBegin = 25;
+constexpr int kSmplxJoints = kSmplxHandsBegin + 30;
+
 struct Segment {
   Vec3 a, b;
   double radius = 0.05;  // the limb's typical radius round it: distances are compared in radii
