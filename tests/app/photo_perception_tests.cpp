@@ -175,6 +175,35 @@ TEST_CASE("the photo population: white-balance shifts across the tones are typic
   }
 }
 
+TEST_CASE("a photo search's first grid: 3-SD uncertainty planes keep most cells off the ends",
+          "[photo][session]") {
+  const spaces::PhotoDistance distance(spaces::default_photo());
+  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
+    return distance.pairwise(xs);
+  };
+  sps::SearchOptions options;
+  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
+  options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
+  options.uncertainty_extent = 5.0;  // the bodies'
+  const auto at_an_end = [](const app::Session& s) {
+    int n = 0;
+    for (const auto& cell : s.cells()) n += bench::pinned_fraction(cell.x) > 0.0 ? 1 : 0;
+    return n;
+  };
+  app::Session session = photo_session(3, options, distance, pairwise);
+  const int wide = at_an_end(session);
+  const sps::Plane before = session.search().current_plane();
+  // Before the first click the session takes its first plane again at the photo space's size.
+  session.set_uncertainty_size(
+      {spaces::kPhotoUncertaintyExtent, spaces::kPhotoUncertaintyMinLengths});
+  const int narrow = at_an_end(session);
+  INFO(wide << " of 9 cells at an end of a range with 5 SDs, " << narrow << " with 3");
+  CHECK((session.search().current_plane().u - before.u).norm() > 1e-6);
+  CHECK(narrow < wide);
+  CHECK(narrow <= 4);
+}
+
 TEST_CASE(
     "a photo search as the window runs it: a temperature among the first planes, a "
     "cooler edit found, no look-alike grids",

@@ -317,9 +317,18 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
     const Eigen::VectorXd sv = next.v.cwiseProduct(o.perceptual_scale);
     CHECK(std::abs(su.dot(sv)) < 1e-9 * su.norm() * sv.norm());
   }
+  // A design space's size for them is kept for the next planes and saved with the search;
+  // sizes outside the ranges are refused and change nothing.
+  search.set_uncertainty_size({2.5, 1.5});
+  CHECK_THROWS_AS(search.set_uncertainty_size({0.05, 1.0}), std::invalid_argument);
+  CHECK_THROWS_AS(search.set_uncertainty_size({3.0, -1.0}), std::invalid_argument);
+  CHECK_THROWS_AS(search.set_uncertainty_size({std::nan(""), 1.0}), std::invalid_argument);
+  CHECK(search.options().uncertainty_extent == Approx(2.5));
+  CHECK(search.options().uncertainty_min_lengths == Approx(1.5));
   const auto restored = sps::PlaneSearch::from_json(search.to_json());
   CHECK(restored.options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
-  CHECK(restored.options().uncertainty_extent == Approx(o.uncertainty_extent));
+  CHECK(restored.options().uncertainty_extent == Approx(2.5));
+  CHECK(restored.options().uncertainty_min_lengths == Approx(1.5));
   auto j = nlohmann::json::parse(search.to_json());
   j["options"]["plane_axes"] = "sideways";
   CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("plane_axes"));
