@@ -315,8 +315,16 @@ void GalleryView::draw_side_panel(PanelContext& ctx) {
   } else {
     std::snprintf(title, sizeof title, "Current best");
   }
+  // The current best is not always the cell picked last, which surprises people: say why.
+  const bool best = !inspecting && !sliders_.point();
   draw_previews(title, inspecting ? inspect_ : best_, start_, static_cast<float>(preview_w_),
-                static_cast<float>(preview_h_));
+                static_cast<float>(preview_h_),
+                best ? "What Save writes. While you zoom in: the cell you clicked last. After each "
+                       "plane: the search's estimate of what you have in mind from all your "
+                       "clicks so far, which weighs every choice and so can differ from your "
+                       "last pick (in the benchmarks it is nearer the target than the last "
+                       "pick)."
+                     : "");
   if (inspecting && ImGui::Button("Back to current best")) c.queue(intent::Inspect{-1});
   // The tabs take what the previews and the footer leave; a tab longer than that scrolls
   // inside itself, so the previews, the tab names and the footer stay in view.

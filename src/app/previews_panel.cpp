@@ -22,9 +22,17 @@ void preview(const char* title, const CellView& cell, const ImVec2& size) {
 }  // namespace
 
 void draw_previews(const std::string& shown_title, const CellView& shown, const CellView& start,
-                   float width, float height) {
+                   float width, float height, const std::string& shown_tooltip) {
   const ImVec2 size(width, height);
   preview(shown_title.c_str(), shown, size);
+  if (!shown_tooltip.empty() && ImGui::IsItemHovered()) {
+    // Wrapped to the preview's width and a little more: one line ran off the window.
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+    ImGui::TextUnformatted(shown_tooltip.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
   ImGui::SameLine();
   // The body the search began with, as it was (not projected onto any holds in force): holds
   // shape what the grid shows from now on; the start is the reference the user compares with

@@ -8,7 +8,8 @@
 
 namespace app {
 
+// `shown_tooltip` (may be empty): what the shown preview is, when the pointer is over it.
 void draw_previews(const std::string& shown_title, const CellView& shown, const CellView& start,
-                   float width, float height);
+                   float width, float height, const std::string& shown_tooltip = {});
 
 }  // namespace app
