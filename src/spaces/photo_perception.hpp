@@ -64,6 +64,10 @@ constexpr double kPhotoUncertaintyMinLengths = 1.0;
 // on three of the four tasks). The gaps are the same on 60 people (mean Delta E at plane 10,
 // summed over the four targets: 7.86 at 3, 7.91 at 5). Photo benchmark, docs/benchmarks.md.
 constexpr double kPhotoUncertaintyExtent = 3.0;
+// Both, as the photo space asks for them (PhotoSpace::uncertainty_size; simulate's photo runs).
+inline sps::UncertaintyPlaneSize photo_uncertainty_size() {
+  return {kPhotoUncertaintyExtent, kPhotoUncertaintyMinLengths};
+}
 
 // The session's zoom rules for photos, in Delta E where a body's are in millimetres: no grid
 // shown holds two edits closer than `distinct` and no zoom step makes neighbours closer than

@@ -50,9 +50,7 @@ class PhotoSpace : public app::DesignSpace, public app::SpacePerception {
   double choice_temperature(int /*cell_px*/) const override { return 0.0; }
   sps::Population population() const override;
   sps::PlaneAxes plane_axes() const override { return sps::PlaneAxes::kTargetUncertainty; }
-  sps::UncertaintyPlaneSize uncertainty_size() const override {
-    return {kPhotoUncertaintyExtent, kPhotoUncertaintyMinLengths};
-  }
+  sps::UncertaintyPlaneSize uncertainty_size() const override { return photo_uncertainty_size(); }
   std::string default_export_name() const override { return "photo.png"; }
   std::string export_hint() const override { return ".png or .jpg, plus a .json of parameters"; }
   std::string export_point(const Eigen::VectorXd& x,

@@ -36,6 +36,22 @@ app::Session photo_session(std::uint64_t seed, const sps::SearchOptions& options
   return session;
 }
 
+app::PairwiseDistance pairwise_of(const spaces::PhotoDistance& distance) {
+  return [&distance](const std::vector<Eigen::VectorXd>& xs) { return distance.pairwise(xs); };
+}
+
+// The optimizer's options as the window sets them for photos: its smallest plane length and
+// uncertainty planes of the photo space's size.
+sps::SearchOptions window_photo_options() {
+  sps::SearchOptions options;
+  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
+  options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  const sps::UncertaintyPlaneSize size = spaces::photo_uncertainty_size();
+  options.uncertainty_extent = size.extent;
+  options.uncertainty_min_lengths = size.min_lengths;
+  return options;
+}
+
 }  // namespace
 
 TEST_CASE("CIEDE2000 matches Sharma, Wu and Dalal's test data", "[photo]") {
@@ -119,9 +135,7 @@ TEST_CASE("every photo parameter changes the picture visibly over its range, wit
 TEST_CASE("a photo session with the colour-difference hook shows no cells closer than 3.5",
           "[photo][session]") {
   const spaces::PhotoDistance distance(spaces::default_photo());
-  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
-    return distance.pairwise(xs);
-  };
+  const app::PairwiseDistance pairwise = pairwise_of(distance);
   sps::SearchOptions options;
   options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
   int grids = 0;
@@ -178,13 +192,8 @@ TEST_CASE("the photo population: white-balance shifts across the tones are typic
 TEST_CASE("a photo search's first grid: 3-SD uncertainty planes keep most cells off the ends",
           "[photo][session]") {
   const spaces::PhotoDistance distance(spaces::default_photo());
-  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
-    return distance.pairwise(xs);
-  };
-  sps::SearchOptions options;
-  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
-  options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
-  options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
+  const app::PairwiseDistance pairwise = pairwise_of(distance);
+  sps::SearchOptions options = window_photo_options();
   options.uncertainty_extent = 5.0;  // the bodies'
   const auto at_an_end = [](const app::Session& s) {
     int n = 0;
@@ -195,8 +204,7 @@ TEST_CASE("a photo search's first grid: 3-SD uncertainty planes keep most cells 
   const int wide = at_an_end(session);
   const sps::Plane before = session.search().current_plane();
   // Before the first click the session takes its first plane again at the photo space's size.
-  session.set_uncertainty_size(
-      {spaces::kPhotoUncertaintyExtent, spaces::kPhotoUncertaintyMinLengths});
+  session.set_uncertainty_size(spaces::photo_uncertainty_size());
   const int narrow = at_an_end(session);
   INFO(wide << " of 9 cells at an end of a range with 5 SDs, " << narrow << " with 3");
   CHECK((session.search().current_plane().u - before.u).norm() > 1e-6);
@@ -209,14 +217,8 @@ TEST_CASE(
     "cooler edit found, no look-alike grids",
     "[photo][session]") {
   const spaces::PhotoDistance distance(spaces::default_photo());
-  const app::PairwiseDistance pairwise = [&](const std::vector<Eigen::VectorXd>& xs) {
-    return distance.pairwise(xs);
-  };
-  sps::SearchOptions options;
-  options.min_plane_length = spaces::kPhotoMinPlaneDeltaE;
-  options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
-  options.uncertainty_min_lengths = spaces::kPhotoUncertaintyMinLengths;
-  options.uncertainty_extent = spaces::kPhotoUncertaintyExtent;
+  const app::PairwiseDistance pairwise = pairwise_of(distance);
+  const sps::SearchOptions options = window_photo_options();
   // "Cooler": every band towards cyan and blue.
   Eigen::VectorXd target = no_edit();
   for (int band = 0; band < 3; ++band) {

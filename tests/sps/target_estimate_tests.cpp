@@ -2,6 +2,7 @@
 // target from a careful chooser's clicks, its prior alone, its validation, its use as the
 // plane centre (saved with the search), its uncertainty and the planes along it.
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -16,6 +17,17 @@
 #include "sps/target_estimate.hpp"
 
 namespace {
+
+// A 3-D search on uncertainty planes whose coordinates a person sees unequally.
+sps::SearchOptions uncertainty_options(std::uint64_t seed) {
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = seed;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  return o;
+}
 
 sps::TargetModel model_for(const Eigen::VectorXd& scale) {
   sps::TargetModel m;
@@ -297,12 +309,7 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
 
 TEST_CASE("uncertainty planes are centred on the estimate and saved with the search",
           "[target][search]") {
-  sps::SearchOptions o;
-  o.dims = 3;
-  o.seed = 9;
-  o.threads = 1;
-  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
-  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  const sps::SearchOptions o = uncertainty_options(9);
   sps::PlaneSearch search(o);
   const sps::TargetModel m = model_for(o.perceptual_scale);
   search.set_population(m.population);
@@ -448,12 +455,7 @@ TEST_CASE("a correlated population gives the first plane its principal axes, sav
 
 TEST_CASE("an uncertainty plane the person cannot tell apart gives way to the paper's plane",
           "[target][search]") {
-  sps::SearchOptions o;
-  o.dims = 3;
-  o.seed = 12;
-  o.threads = 1;
-  o.perceptual_scale = Eigen::Vector3d(200.0, 50.0, 20.0);
-  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::SearchOptions o = uncertainty_options(12);
   sps::PlaneSearch search(o);
   o.plane_axes = sps::PlaneAxes::kExpectedImprovement;
   sps::PlaneSearch paper(o);
