@@ -14,6 +14,7 @@
 #include "body/measurements.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -99,7 +100,9 @@ Eigen::Vector3d joint(const BodyMesh& mesh, int j) {
   return mesh.joints.row(j).cast<double>().transpose();
 }
 
-double shoulder_width(const Model& model, const BodyMesh& mesh) {
+// The horizontal distance of the shoulder joint centres (NaN without them): the bideltoid
+// breadth adds the deltoids' reach to it.
+double shoulder_joint_distance(const Model& model, const BodyMesh& mesh) {
   const int l = joint_index(model, mesh, "left_shoulder");
   const int r = joint_index(model, mesh, "right_shoulder");
   if (l < 0 || r < 0) return kNaN;
@@ -107,15 +110,70 @@ double shoulder_width(const Model& model, const BodyMesh& mesh) {
   return std::hypot(d.x(), d.z());
 }
 
-double arm_length(const Model& model, const BodyMesh& mesh) {
+// The nearest point (t > 0, t <= reach) where the ray from `origin` along the unit `direction`
+// crosses a face, whichever way the face turns; NaN coordinates when none does.
+Eigen::Vector3d first_crossing(const Vertices& vertices, const Faces& faces,
+                               const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                               double reach) {
+  double best = std::numeric_limits<double>::infinity();
+  for_each_triangle(
+      vertices, faces,
+      [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+        // Moller and Trumbore 1997 (J. Graphics Tools 2(1):21).
+        const Eigen::Vector3d e1 = b - a, e2 = c - a;
+        const Eigen::Vector3d p = direction.cross(e2);
+        const double det = e1.dot(p);
+        if (std::abs(det) < 1e-14) return;
+        const Eigen::Vector3d s = origin - a;
+        const double u = s.dot(p) / det;
+        if (u < 0.0 || u > 1.0) return;
+        const Eigen::Vector3d q = s.cross(e1);
+        const double v = direction.dot(q) / det;
+        if (v < 0.0 || u + v > 1.0) return;
+        const double t = e2.dot(q) / det;
+        if (t > 0.0 && t <= reach && t < best) best = t;
+      });
+  if (!std::isfinite(best)) return Eigen::Vector3d::Constant(kNaN);
+  return origin + best * direction;
+}
+
+// The acromia, left then right (see measurements.hpp); NaN coordinates without shoulder
+// joints or where the ray leaves no skin within 25 cm.
+std::array<Eigen::Vector3d, 2> acromia(const Model& model, const BodyMesh& mesh) {
+  const Eigen::Vector3d none = Eigen::Vector3d::Constant(kNaN);
+  const int l = joint_index(model, mesh, "left_shoulder");
+  const int r = joint_index(model, mesh, "right_shoulder");
+  if (l < 0 || r < 0) return {none, none};
+  Eigen::Vector3d across = joint(mesh, l) - joint(mesh, r);
+  across.y() = 0.0;
+  if (!(across.norm() > 1e-6)) return {none, none};
+  across.normalize();
+  const double angle = kAcromionAngleDegrees * M_PI / 180.0;
+  std::array<Eigen::Vector3d, 2> out;
+  for (int side = 0; side < 2; ++side) {
+    const Eigen::Vector3d outward = side == 0 ? across : Eigen::Vector3d(-across);
+    const Eigen::Vector3d direction =
+        std::cos(angle) * Eigen::Vector3d::UnitY() + std::sin(angle) * outward;
+    out[side] =
+        first_crossing(mesh.vertices, model.faces, joint(mesh, side == 0 ? l : r), direction, 0.25);
+  }
+  return out;
+}
+
+double shoulder_width(const std::array<Eigen::Vector3d, 2>& acromion) {
+  const Eigen::Vector3d d = acromion[0] - acromion[1];
+  return std::hypot(d.x(), d.z());
+}
+
+double arm_length(const Model& model, const BodyMesh& mesh,
+                  const std::array<Eigen::Vector3d, 2>& acromion) {
   double sum = 0.0;
-  for (const char* side : {"left", "right"}) {
-    const std::string s(side);
-    const int a = joint_index(model, mesh, (s + "_shoulder").c_str());
+  for (int side = 0; side < 2; ++side) {
+    const std::string s(side == 0 ? "left" : "right");
     const int b = joint_index(model, mesh, (s + "_elbow").c_str());
     const int c = joint_index(model, mesh, (s + "_wrist").c_str());
-    if (a < 0 || b < 0 || c < 0) return kNaN;
-    sum += (joint(mesh, a) - joint(mesh, b)).norm() + (joint(mesh, b) - joint(mesh, c)).norm();
+    if (b < 0 || c < 0) return kNaN;
+    sum += (acromion[side] - joint(mesh, b)).norm() + (joint(mesh, b) - joint(mesh, c)).norm();
   }
   return 0.5 * sum;
 }
@@ -233,8 +291,8 @@ void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces,
   }
   if ((bands & kArmBand) != 0) {
     m.upper_arm = arms ? 0.5 * upper_arm : kNaN;
-    // measure() took the shoulder joints' distance before the slices.
-    m.bideltoid = arms && std::isfinite(m.shoulder_width) ? m.shoulder_width + deltoids : kNaN;
+    const double joints = shoulder_joint_distance(model, mesh);
+    m.bideltoid = arms && std::isfinite(joints) ? joints + deltoids : kNaN;
   }
   if ((bands & kLegBand) != 0) {
     m.thigh = legs ? 0.5 * thigh : kNaN;
@@ -278,8 +336,9 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
   const double ymax = mesh.vertices.col(1).maxCoeff();
   const double H = ymax - ymin;
   m.height = H;
-  m.shoulder_width = shoulder_width(model, mesh);
-  m.arm_length = arm_length(model, mesh);
+  const std::array<Eigen::Vector3d, 2> acromion = acromia(model, mesh);
+  m.shoulder_width = shoulder_width(acromion);
+  m.arm_length = arm_length(model, mesh, acromion);
   m.inseam = kNaN;
   if (!(H > 0.0)) return m;
   m.bmi = m.mass / (H * H);

@@ -26,10 +26,11 @@ struct Measurements {
   // Body mass index, kg/m^2: mass / height^2 (both as above).
   double bmi = 0.0;
   // Lengths from the skeleton and the surface (metres); NaN when the model lacks what the
-  // landmark needs (joint names of the SMPL family, a crotch between two legs). See below.
+  // landmark needs (joint names of the SMPL family, skin over the shoulders, a crotch between
+  // two legs). See below.
   double shoulder_width = 0.0;  // biacromial breadth
   double inseam = 0.0;          // crotch to sole
-  double arm_length = 0.0;      // shoulder - elbow - wrist
+  double arm_length = 0.0;      // acromion - elbow - wrist
   // Girths and a breadth across the limbs and the neck, from slices perpendicular to a bone
   // (see below); NaN when the model lacks the joints, 0 when not taken (`bands`).
   double neck = 0.0;       // neck circumference, mid-neck
@@ -38,6 +39,9 @@ struct Measurements {
   double thigh = 0.0;      // thigh circumference below the gluteal furrow
   double calf = 0.0;       // calf circumference, its largest
 };
+
+// The acromion's ray from the shoulder joint, degrees out from straight up (see below).
+constexpr double kAcromionAngleDegrees = 27.0;
 
 // Whole-body density, kg/m^3. Densitometry of adults gives about 1.06-1.07 g/cm^3 for lean
 // tissue and 0.90 for fat; whole-body densities with the lungs' air included are close to
@@ -61,13 +65,21 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces);
 // The lengths use the skeleton's joints, which every SMPL-family model (and the built-in
 // models) regresses from its own vertices, found by their SMPL names (left_shoulder,
 // right_elbow, left_hip...; body/joint_names.hpp) -- never vertex ids of one mesh:
-//   shoulder_width = horizontal distance between the left and right shoulder joint centres.
-//           The glenohumeral centres lie under the acromia, so this reads about 2-4 cm less
-//           than a calliper's biacromial breadth (ANSUR II: ~40 cm men, ~36 cm women); it
-//           follows the breadth one to one as the body changes, which is what targets and
-//           holds need, and it is smooth in the betas (a slice-based edge is not).
-//   arm_length = |shoulder - elbow| + |elbow - wrist| along the joint centres, the mean of
-//           both sides (the acromion-radiale-stylion sum of anthropometry, joint to joint).
+//   acromion = where the ray from the shoulder joint centre, kAcromionAngleDegrees out from
+//           straight up towards the body's side (in the vertical plane through both shoulder
+//           joints), leaves the skin: the top of the shoulder over the humeral head's lateral
+//           margin, the surface point a calliper's biacromial breadth and the survey's arm
+//           lengths start from (ANSUR II, Gordon et al. 2014: the acromion's lateral tip).
+//           The joint centre lies in the humeral head, which has a radius of about 2.3 cm
+//           (Boileau & Walch 1997, J. Bone Joint Surg. 79-B:857); the acromion's edge lies
+//           over the head's lateral margin, about 2 cm out from and 4 cm above the centre,
+//           27 degrees from vertical. The point moves with the surface, continuously in the
+//           betas (one ray per side, no slice).
+//   shoulder_width = horizontal distance between the two acromia (the survey's biacromial
+//           breadth).
+//   arm_length = |acromion - elbow| + |elbow - wrist|, the mean of both sides (the survey's
+//           acromion-radiale plus radiale-stylion: the radiale lies at the elbow joint's
+//           line, the stylion at the wrist's).
 //   inseam = height above the sole of the crotch: the highest downward-facing surface that
 //           the vertical line through the midpoint of the hip joints crosses below them (the
 //           inner thighs, when they touch, face sideways or lie lower; without hip joints:
@@ -83,7 +95,8 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces);
 //   thigh = girth 1% of H below the crotch along hip -> knee (the survey: at the gluteal
 //          furrow), both legs' mean;
 //   calf = the largest girth at 20-50% of knee -> ankle, both legs' mean;
-//   bideltoid = the shoulder joints' distance plus, on each side, how far the deltoid reaches
+//   bideltoid = the shoulder joints' horizontal distance plus, on each side, how far the deltoid
+//   reaches
 //          out from the humerus (the largest lateral extent of the upper-arm slices at 10-30%
 //          of shoulder -> elbow): the survey's breadth across the deltoids with the arms
 //          hanging, whatever the rest pose's arm angle.

@@ -14,8 +14,8 @@ namespace body {
 
 // The measurements fitted, by the tool's names: stature, mass, chest, waist, buttock (hips),
 // neck, bideltoid breadth, flexed biceps (the tool's upper arm is relaxed), thigh, calf,
-// crotch height (inseam) and the arm (acromion-radiale plus radiale-stylion against the
-// tool's joint-to-joint length).
+// crotch height (inseam) and the arm (acromion-radiale plus radiale-stylion, from the
+// acromion as the tool's arm length).
 const std::vector<std::string>& fit_measure_names();
 
 struct FitRow {

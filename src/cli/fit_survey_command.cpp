@@ -31,8 +31,7 @@ const char* const kUsage =
     "for every component of the model) and prints, per measurement, the median and the 95th\n"
     "percentile of the absolute error (cm; kg for mass). --out also writes them as CSV\n"
     "(measurement,unit,median_abs_error,p95_abs_error). The survey's biceps is flexed, the\n"
-    "tool's upper arm relaxed; its arm runs from the acromion's surface point, the tool's from\n"
-    "the shoulder joint's centre. --measurements fits only those named.\n";
+    "tool's upper arm relaxed. --measurements fits only those named.\n";
 
 int run(int argc, char** argv) {
   const cli::ArgParser args(argc, argv, {"help"});

@@ -235,15 +235,27 @@ TEST_CASE("measure: mass, BMI, shoulder width, inseam and arm length of a box fi
     CHECK(m.volume == Approx(volume).epsilon(1e-5));
     CHECK(m.mass == Approx(volume * body::kBodyDensity).epsilon(1e-5));
     CHECK(m.bmi == Approx(volume * body::kBodyDensity / (1.6 * 1.6)).epsilon(1e-5));
-    // Horizontal distance of the shoulder joints: (0.34, 0.04) in (x, z).
-    CHECK(m.shoulder_width == Approx(std::hypot(0.34, 0.04)).epsilon(1e-5));
+    // The acromia: the rays from the shoulder joints, 27 degrees out from straight up (in the
+    // plane through both joints), leave the torso box through its sides at x = +-0.2 (they
+    // would meet the top, y = 1.6, only farther out).
+    const double angle = body::kAcromionAngleDegrees * M_PI / 180.0;
+    const Eigen::Vector3d across = Eigen::Vector3d(0.34, 0.0, 0.04).normalized();
+    const Eigen::Vector3d ray =
+        std::cos(angle) * Eigen::Vector3d::UnitY() + std::sin(angle) * across;
+    REQUIRE((0.2 - 0.17) / ray.x() < (1.6 - 1.5) / ray.y());
+    const Eigen::Vector3d left_acromion =
+        Eigen::Vector3d(0.17, 1.5, 0.02) + (0.2 - 0.17) / ray.x() * ray;
+    // The right joint mirrors the left through the torso's axis: so does its acromion.
+    const Eigen::Vector3d right_acromion(-left_acromion.x(), left_acromion.y(), -left_acromion.z());
+    CHECK(left_acromion.y() > 1.5);
+    CHECK(m.shoulder_width ==
+          Approx(std::hypot(0.4, left_acromion.z() - right_acromion.z())).epsilon(1e-5));
     // The crotch is the torso's underside between the legs.
     CHECK(m.inseam == Approx(0.8).margin(1e-5));
-    const double left = std::sqrt(0.13 * 0.13 + 0.25 * 0.25 + 0.02 * 0.02) +
-                        std::sqrt(0.04 * 0.04 + 0.25 * 0.25 + 0.03 * 0.03);
-    const double right = std::sqrt(0.13 * 0.13 + 0.25 * 0.25 + 0.02 * 0.02) +
-                         std::sqrt(0.04 * 0.04 + 0.25 * 0.25 + 0.03 * 0.03);
-    CHECK(m.arm_length == Approx(0.5 * (left + right)).epsilon(1e-5));
+    // Acromion - elbow - wrist: the right arm's is as long as the left's.
+    const Eigen::Vector3d elbow(0.30, 1.25, 0.0), wrist(0.34, 1.0, 0.03);
+    const double arm = (left_acromion - elbow).norm() + (elbow - wrist).norm();
+    CHECK(m.arm_length == Approx(arm).epsilon(1e-5));
     // The same without the girths.
     const auto quick = body::measure(b.model, b.mesh, false);
     CHECK(quick.inseam == Approx(m.inseam).margin(1e-9));
@@ -427,7 +439,8 @@ TEST_CASE("measure: neck, deltoid, upper-arm, thigh and calf on the built-in mod
     CHECK(m->neck < 0.50);
     CHECK(m->bideltoid > 0.37);
     CHECK(m->bideltoid < 0.62);
-    CHECK(m->bideltoid > m->shoulder_width + 0.04);  // the deltoids lie outside the joints
+    // The deltoids reach out beyond the acromia.
+    CHECK(m->bideltoid > m->shoulder_width + 0.04);
     CHECK(m->upper_arm > 0.22);
     CHECK(m->upper_arm < 0.45);
     CHECK(m->thigh > 0.42);

@@ -186,16 +186,23 @@ constexpr double kTemplateStature = 1.70;
 constexpr double kLayerRadius = 0.08;
 constexpr double kLayerCap = 0.11;
 
-// Per-sex calibration of the cross sections (see DeformationModel::parameters).
+// Per-sex calibration of the cross sections and of the shoulders' and arms' lengths (see
+// DeformationModel::parameters).
 struct Calibration {
   double pelvis, waist, chest, neck, thigh, calf, biceps;
   // Metres of soft tissue added round the top of the thighs (kThighTop): the thigh's scale
   // acts along the whole femur, and raised far enough to give the survey's thigh girth (taken
   // just below the buttock's fold) it bulged the lower thigh into a ring above the knee.
   double thigh_top;
+  // The shoulders' spread (the collar and shoulder joints' distance from the midline) and the
+  // upper arm's and forearm's lengths: the mannequin's were modelled by eye, the survey takes
+  // them from the acromion (body/measurements.hpp); these give the mean bodies the survey's
+  // biacromial breadth and acromion-radiale-stylion length as the tool measures them.
+  double shoulder, arm;
 };
-constexpr Calibration kFemaleCalibration{0.96, 1.45, 0.80, 0.80, 1.25, 1.24, 1.12, 0.005};
-constexpr Calibration kMaleCalibration{0.95, 1.28, 1.04, 0.87, 1.28, 1.12, 1.10, 0.018};
+constexpr Calibration kFemaleCalibration{0.96, 1.45, 0.80,  0.80, 1.25,
+                                         1.24, 1.12, 0.005, 1.0,  1.08};
+constexpr Calibration kMaleCalibration{0.95, 1.28, 1.04, 0.87, 1.28, 1.12, 1.10, 0.018, 0.77, 1.14};
 
 double gauss(double x, double centre, double sd) {
   const double t = (x - centre) / sd;
@@ -459,10 +466,12 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // the same stature shortens the trunk and leaves the stature alone.
   const double pelvis_y = J[kPelvis].y();
   const double ts = (kTemplateStature * s - pelvis_y * ls) / (kTemplateStature - pelvis_y);
-  const double upper_arm = r(k_upper_arm_length);
+  const Calibration& cal = a.female ? kFemaleCalibration : kMaleCalibration;
+  const double upper_arm = cal.arm * r(k_upper_arm_length);
   // forearm + hand length: the forearm takes what the hand does not.
   const double hand = r(k_hand_length);
-  const double forearm = (r(k_forearm_hand_length) * 0.33 - hand * 0.085) / (0.33 - 0.085);
+  const double forearm =
+      cal.arm * (r(k_forearm_hand_length) * 0.33 - hand * 0.085) / (0.33 - 0.085);
   const double foot = r(k_foot_length);
   const double head = std::sqrt(r(k_head_circ) * r(k_head_length));
 
@@ -472,7 +481,6 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   // by the tool's own code (`bench-survey --models-dir`) match the survey's means.
   // The person's own girth bands (survey_calibration.hpp) then correct what is left, body by
   // body.
-  const Calibration& cal = a.female ? kFemaleCalibration : kMaleCalibration;
   const double pelvis_w = cal.pelvis * r(k_hip_breadth);
   const double pelvis_d = cal.pelvis * r(k_buttock_depth);
   const double waist_w = cal.waist * r(k_waist_breadth), waist_d = cal.waist * r(k_waist_depth);
@@ -482,7 +490,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   const double ankle = r(k_ankle_circ);
   const double biceps = cal.biceps * r(k_biceps_circ), forearm_g = r(k_forearm_circ);
   const double wrist = r(k_wrist_circ);
-  const double shoulder = r(k_biacromial);
+  const double shoulder = cal.shoulder * r(k_biacromial);
   const double pelvis_breadth = r(k_bicristal);
 
   std::array<Vec3, kJointCount> Jn;
