@@ -19,7 +19,8 @@ common=(simulate --function body --user zoom-jnd --components 10 --grid 3 --leve
         --trials "$TRIALS" --iterations "$PLANES" --seed 1000 --quiet)
 start=$(date +%s)
 # PIXEL_REPORT_ONLY=1: only re-write the section from the CSVs already in docs/benchmarks
-# (after re-running one of them by hand with the command lines below).
+# (after re-running one of them by hand with the command lines below; REPORT_NOTE, a sentence
+# on which rows were re-run, replaces the generic one).
 for cell in 210 400; do
   [ "${PIXEL_REPORT_ONLY:-0}" = 1 ] && break
   for method in sps sps-random sls; do
@@ -93,7 +94,8 @@ for cell in (210, 400):
 lines.append(row("- | sps, perfect chooser (`--jnd-mm 0`)", perfect, "-"))
 lines += ["", "Share of the gap between random planes and the perfect chooser that SPS closes at "
           f"plane 10: {closed[210]:.2f} at 210 px, {closed[400]:.2f} at 400 px (the issue asks for "
-          "at least 0.5). " + ("Section re-written from the CSVs after one of them was re-run."
+          "at least 0.5). " + (os.environ.get("REPORT_NOTE") or
+                               "Section re-written from the CSVs after one of them was re-run."
                                if os.environ.get("REPORT_ONLY") == "1" else
                                f"Wall time {seconds} s (2 shared cores).")]
 sps210 = rows("pixel_210px_sps")
