@@ -110,31 +110,40 @@ double shoulder_joint_distance(const Model& model, const BodyMesh& mesh) {
   return std::hypot(d.x(), d.z());
 }
 
-// The nearest point (t > 0, t <= reach) where the ray from `origin` along the unit `direction`
-// crosses a face, whichever way the face turns; NaN coordinates when none does.
-Eigen::Vector3d first_crossing(const Vertices& vertices, const Faces& faces,
-                               const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                               double reach) {
-  double best = std::numeric_limits<double>::infinity();
+// For each ray (from origins[i] along the unit directions[i]) the nearest point (t > 0,
+// t <= reach) where it crosses a face, whichever way the face turns; NaN coordinates when none
+// does. Both rays in one pass over the faces: measure() runs this for every body a hold or a
+// target solve looks at.
+std::array<Eigen::Vector3d, 2> first_crossings(const Vertices& vertices, const Faces& faces,
+                                               const std::array<Eigen::Vector3d, 2>& origins,
+                                               const std::array<Eigen::Vector3d, 2>& directions,
+                                               double reach) {
+  std::array<double, 2> best = {std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::infinity()};
   for_each_triangle(
       vertices, faces,
       [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
         // Moller and Trumbore 1997 (J. Graphics Tools 2(1):21).
         const Eigen::Vector3d e1 = b - a, e2 = c - a;
-        const Eigen::Vector3d p = direction.cross(e2);
-        const double det = e1.dot(p);
-        if (std::abs(det) < 1e-14) return;
-        const Eigen::Vector3d s = origin - a;
-        const double u = s.dot(p) / det;
-        if (u < 0.0 || u > 1.0) return;
-        const Eigen::Vector3d q = s.cross(e1);
-        const double v = direction.dot(q) / det;
-        if (v < 0.0 || u + v > 1.0) return;
-        const double t = e2.dot(q) / det;
-        if (t > 0.0 && t <= reach && t < best) best = t;
+        for (int i = 0; i < 2; ++i) {
+          const Eigen::Vector3d p = directions[i].cross(e2);
+          const double det = e1.dot(p);
+          if (std::abs(det) < 1e-14) continue;
+          const Eigen::Vector3d s = origins[i] - a;
+          const double u = s.dot(p) / det;
+          if (u < 0.0 || u > 1.0) continue;
+          const Eigen::Vector3d q = s.cross(e1);
+          const double v = directions[i].dot(q) / det;
+          if (v < 0.0 || u + v > 1.0) continue;
+          const double t = e2.dot(q) / det;
+          if (t > 0.0 && t <= reach && t < best[i]) best[i] = t;
+        }
       });
-  if (!std::isfinite(best)) return Eigen::Vector3d::Constant(kNaN);
-  return origin + best * direction;
+  std::array<Eigen::Vector3d, 2> out;
+  for (int i = 0; i < 2; ++i)
+    out[i] = std::isfinite(best[i]) ? Eigen::Vector3d(origins[i] + best[i] * directions[i])
+                                    : Eigen::Vector3d::Constant(kNaN);
+  return out;
 }
 
 // The acromia, left then right (see measurements.hpp); NaN coordinates without shoulder
@@ -149,15 +158,9 @@ std::array<Eigen::Vector3d, 2> acromia(const Model& model, const BodyMesh& mesh)
   if (!(across.norm() > 1e-6)) return {none, none};
   across.normalize();
   const double angle = kAcromionAngleDegrees * M_PI / 180.0;
-  std::array<Eigen::Vector3d, 2> out;
-  for (int side = 0; side < 2; ++side) {
-    const Eigen::Vector3d outward = side == 0 ? across : Eigen::Vector3d(-across);
-    const Eigen::Vector3d direction =
-        std::cos(angle) * Eigen::Vector3d::UnitY() + std::sin(angle) * outward;
-    out[side] =
-        first_crossing(mesh.vertices, model.faces, joint(mesh, side == 0 ? l : r), direction, 0.25);
-  }
-  return out;
+  const Eigen::Vector3d up = std::cos(angle) * Eigen::Vector3d::UnitY();
+  return first_crossings(mesh.vertices, model.faces, {joint(mesh, l), joint(mesh, r)},
+                         {up + std::sin(angle) * across, up - std::sin(angle) * across}, 0.25);
 }
 
 double shoulder_width(const std::array<Eigen::Vector3d, 2>& acromion) {

@@ -101,9 +101,9 @@ double enclosed_volume(const Vertices& vertices, const Faces& faces);
 //          of shoulder -> elbow): the survey's breadth across the deltoids with the arms
 //          hanging, whatever the rest pose's arm angle.
 // Each girth is the convex hull of the slice piece around the bone, as a tape would lie.
-// `girths` = false skips the slices (chest, waist, hips stay 0): the rest costs one pass over
-// the vertices and faces (well under a millisecond on the default model, against ~11 ms
-// with the slices), for callers that need only those (holds, targets).
+// `girths` = false skips the slices (chest, waist, hips stay 0): the rest costs two passes over
+// the faces (the volume and crotch, then both acromia's rays), well under the ~11 ms of the
+// slices on the default model, for callers that need only those (holds, targets).
 // `bands` picks the girths taken (the others stay 0): holding or solving for one girth slices
 // only its band (the hips need the waist's slice, so kHipsBand takes the waist too).
 enum GirthBand : unsigned {
