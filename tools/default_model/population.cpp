@@ -73,7 +73,7 @@ struct FactorShift {
 };
 constexpr FactorShift kFemaleShift{-0.2, -0.6, -0.3, 0.3, 0.5};
 constexpr FactorShift kMaleShift{0.8, 0.7, 0.3, -0.3, -0.5};
-constexpr double kStatureTruncation = 2.0;
+constexpr double kStatureTruncation = 1.4;
 
 }  // namespace
 
@@ -90,9 +90,7 @@ std::vector<Anthropometry> sample_population(bool female, int count, std::uint64
     Eigen::VectorXd z(kSurveyMeasures);
     // Stature (the first measure: z[0] alone makes it, the Cholesky factor being lower
     // triangular) is held to a narrower range than the other measures, so that no body along
-    // a single component at +-3, nor far combinations of several, falls below the survey's
-    // shortest adult (1.41 m). At 2.0 SDs the drawn statures keep 88% of the survey's
-    // spread (1.4 SDs kept 71%, and the models' heights spread 4.5-4.7 cm against 6.4-6.9).
+    // a single component at +-3, nor far combinations of several, falls below 1.45 m.
     for (int k = 0; k < kSurveyMeasures; ++k)
       z[k] = normal.truncated(k == k_stature ? kStatureTruncation * truncate_survey / 2.3
                                              : truncate_survey);
