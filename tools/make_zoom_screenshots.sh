@@ -2,8 +2,8 @@
 # The grid of each zoom level of the first plane (or, with ZOOM_SKIP_PLANES=N, of plane N+1)
 # in the real window at 1280x720 (Xvfb,
 # xdotool), clicking the centre cell each time: docs/screenshot-zoom-levels.png, the four
-# grids side by side as the window shows them (body cells about 210 px; with --space photo a
-# 5x5 grid of about 125 px), to judge whether a person can tell every cell apart at each level.
+# grids side by side as the window shows them (body cells about 230 px; with --space photo a
+# 5x5 grid of about 136 px), to judge whether a person can tell every cell apart at each level.
 #   bash tools/make_zoom_screenshots.sh [BUILD_DIR] [OUT.png] [extra gallery options...]
 set -euo pipefail
 cd "$(dirname "$0")/.."

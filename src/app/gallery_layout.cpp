@@ -5,15 +5,17 @@
 
 namespace app {
 
+int toolbar_rows_for(float width) {
+  if (width >= kToolbarOneRowWidth) return 1;
+  return width >= kToolbarOneRowWidth / 2 ? 2 : 3;
+}
+
 GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell) {
   GalleryLayout l;
   const float n = static_cast<float>(std::max(1, grid_size));
   l.gap = kLayoutGap;
-  l.toolbar = {kLayoutMargin, kLayoutMargin, width - 2 * kLayoutMargin, kToolbarHeight};
-  l.messages = {kLayoutMargin, l.toolbar.y + kToolbarHeight, width - 2 * kLayoutMargin,
-                kMessageHeight};
-  const float top = l.messages.y + kMessageHeight;
-  const float avail_h = std::max(64.0f, height - top - kLayoutMargin);
+  const float top = kLayoutMargin;
+  const float avail_h = std::max(64.0f, height - 2 * kLayoutMargin);
   const float side_min = std::max(kSidePanelMinWidth, kSidePanelShare * width);
   float grid;
   if (fixed_cell > 0) {
@@ -27,7 +29,12 @@ GalleryLayout compute_layout(float width, float height, int grid_size, int fixed
   }
   l.grid = {kLayoutMargin, top, grid, grid};
   const float side_x = l.grid.x + grid + 2 * l.gap;
-  l.side = {side_x, top, std::max(120.0f, width - side_x - kLayoutMargin), avail_h};
+  const float side_w = std::max(120.0f, width - side_x - kLayoutMargin);
+  l.toolbar_rows = toolbar_rows_for(side_w);
+  l.toolbar = {side_x, top, side_w, kToolbarRowHeight * static_cast<float>(l.toolbar_rows)};
+  l.messages = {side_x, l.toolbar.y + l.toolbar.h, side_w, kMessageHeight};
+  const float side_top = l.messages.y + kMessageHeight;
+  l.side = {side_x, side_top, side_w, std::max(64.0f, height - kLayoutMargin - side_top)};
   return l;
 }
 
@@ -35,7 +42,9 @@ std::pair<int, int> window_size_for_cells(int grid_size, int cell) {
   const float n = static_cast<float>(grid_size);
   const float grid = n * static_cast<float>(cell) + (n - 1) * kLayoutGap;
   const float w = 2 * kLayoutMargin + grid + 2 * kLayoutGap + 560.0f;
-  const float h = kLayoutMargin + kToolbarHeight + kMessageHeight + grid + kLayoutMargin;
+  // The side column under the toolbar needs room for the previews and a tab even beside a
+  // grid of small cells.
+  const float h = std::max(2 * kLayoutMargin + grid, 480.0f);
   return {static_cast<int>(std::ceil(w)), static_cast<int>(std::ceil(h))};
 }
 

@@ -17,9 +17,6 @@ namespace {
 constexpr render::ViewPreset kPresets[] = {render::ViewPreset::kFront, render::ViewPreset::kSide,
                                            render::ViewPreset::kThreeQuarter};
 
-// How many lines the side panel's footer takes (design space, keys).
-constexpr float kFooterLines = 3.2f;
-
 }  // namespace
 
 const std::vector<std::string>& side_panel_tabs() {
@@ -199,8 +196,17 @@ void GalleryView::build(GalleryController& c, long frame) {
                    ImGuiWindowFlags_NoBackground);  // glClear paints it, far cheaper
   ImGui::SetCursorScreenPos(ImVec2(layout_.toolbar.x, layout_.toolbar.y));
   draw_toolbar(c);
-  ImGui::SetCursorScreenPos(ImVec2(layout_.messages.x, layout_.messages.y + 3));
-  draw_messages(c);
+  {
+    // The message lines wrap in the side column and stop at their rect (the whole text is
+    // in the tooltip), so a long error never pushes the previews down.
+    const LayoutRect& m = layout_.messages;
+    ImGui::SetCursorScreenPos(ImVec2(m.x, m.y + 3));
+    ImGui::PushClipRect(ImVec2(m.x, m.y), ImVec2(m.x + m.w, m.y + m.h), true);
+    ImGui::PushTextWrapPos(m.x + m.w - ImGui::GetWindowPos().x);
+    draw_messages(c);
+    ImGui::PopTextWrapPos();
+    ImGui::PopClipRect();
+  }
   ImGui::SetCursorScreenPos(ImVec2(layout_.grid.x, layout_.grid.y));
   if (grid_.draw(ctx, layout_, cells_, best_.prepared.get(), camera_, frame,
                  options_.report_layout)) {
@@ -217,55 +223,100 @@ void GalleryView::build(GalleryController& c, long frame) {
   take_file_answer(ctx);
 }
 
-void GalleryView::draw_toolbar(GalleryController& c) {
-  ImGui::BeginDisabled(!c.can_undo_click());
-  if (ImGui::Button("Undo click")) c.queue(intent::UndoClick{});
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Take back the last click (Backspace / Ctrl+Z)");
-  }
-  ImGui::SameLine();
-  ImGui::BeginDisabled(!c.can_undo_plane());
-  if (ImGui::Button("Undo plane")) c.queue(intent::UndoPlane{});
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Go back to the start of the last finished plane");
-  }
-  ImGui::SameLine();
-  ImGui::BeginDisabled(!c.can_redo());
-  if (ImGui::Button("Redo")) c.queue(intent::Redo{});
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Redo what Undo took back (Ctrl+Y / Ctrl+Shift+Z)");
-  }
-  ImGui::SameLine();
-  ImGui::BeginDisabled(c.busy() || !c.has_progress());
-  if (ImGui::Button("Start over")) confirm_start_over_ = true;
-  ImGui::EndDisabled();
-  if (c.space().uses_camera()) {
+namespace {
+
+// Lays the toolbar's groups out left to right and wraps a group that would cross the toolbar's
+// right edge onto the next row (the side column is narrower than the items at small windows).
+class ToolbarFlow {
+ public:
+  ToolbarFlow(float left, float right) : left_(left), right_(right) {}
+  // Before a group `width` wide: on this row if it fits, else on the next. True when it stays
+  // on this row (a separator belongs before it then).
+  bool next(float width) {
+    if (first_) {
+      first_ = false;
+      return false;
+    }
+    const float x = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x;
+    if (x + width > right_) {
+      // ImGui starts a new row at the window's left edge, under the grid: move it back.
+      ImGui::SetCursorScreenPos(ImVec2(left_, ImGui::GetCursorScreenPos().y));
+      return false;
+    }
     ImGui::SameLine();
+    return true;
+  }
+  // The same, for a group that a dimmed "|" separates from what comes before on its row.
+  void next_separated(float width) {
+    const float bar = ImGui::CalcTextSize("|").x + ImGui::GetStyle().ItemSpacing.x;
+    if (!next(bar + width)) return;
     ImGui::TextDisabled("|");
     ImGui::SameLine();
-    ImGui::TextUnformatted("View:");
+  }
+
+ private:
+  float left_, right_;
+  bool first_ = true;
+};
+
+float button_width(const char* label) {
+  return ImGui::CalcTextSize(label).x + 2 * ImGui::GetStyle().FramePadding.x;
+}
+
+float radio_width(const char* label) {
+  return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+         ImGui::CalcTextSize(label).x;
+}
+
+}  // namespace
+
+void GalleryView::draw_toolbar(GalleryController& c) {
+  ToolbarFlow flow(layout_.toolbar.x, layout_.toolbar.x + layout_.toolbar.w);
+  const auto button = [&flow](const char* label, bool enabled, const char* tip) {
+    flow.next(button_width(label));
+    ImGui::BeginDisabled(!enabled);
+    const bool pressed = ImGui::Button(label);
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
+    return pressed;
+  };
+  if (button("Undo click", c.can_undo_click(), "Take back the last click (Backspace / Ctrl+Z)")) {
+    c.queue(intent::UndoClick{});
+  }
+  if (button("Undo plane", c.can_undo_plane(), "Go back to the start of the last finished plane")) {
+    c.queue(intent::UndoPlane{});
+  }
+  if (button("Redo", c.can_redo(), "Redo what Undo took back (Ctrl+Y / Ctrl+Shift+Z)")) {
+    c.queue(intent::Redo{});
+  }
+  if (button("Start over", !c.busy() && c.has_progress(),
+             "Discard the clicks and the history, after asking (Redo brings them back)")) {
+    confirm_start_over_ = true;
+  }
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  if (c.space().uses_camera()) {
     const char* labels[] = {"Front", "Side", "3/4"};
+    float width = ImGui::CalcTextSize("View:").x;
+    for (const char* label : labels) width += spacing + radio_width(label);
+    flow.next_separated(width);
+    ImGui::TextUnformatted("View:");
     for (int i = 0; i < 3; ++i) {
       ImGui::SameLine();
       if (ImGui::RadioButton(labels[i], active_preset_ == i)) set_preset(i);
     }
   }
-  ImGui::SameLine();
-  ImGui::TextDisabled("|");
-  ImGui::SameLine();
   const auto& s = c.session().settings();
-  ImGui::Text("Plane %d   click %d of %d", c.session().planes_done() + 1,
-              std::min(c.session().clicks_on_plane() + (c.busy() ? 0 : 1), s.zoom_levels),
-              s.zoom_levels);
-  ImGui::SameLine();
-  ImGui::TextDisabled("|");
-  ImGui::SameLine();
+  char plane[64];
+  std::snprintf(plane, sizeof plane, "Plane %d   click %d of %d", c.session().planes_done() + 1,
+                std::min(c.session().clicks_on_plane() + (c.busy() ? 0 : 1), s.zoom_levels),
+                s.zoom_levels);
+  flow.next_separated(ImGui::CalcTextSize(plane).x);
+  ImGui::TextUnformatted(plane);
   const SpaceKind* kind = catalogue_.find(c.space().settings().kind);
-  ImGui::Text("%s: %s", kind != nullptr ? kind->source_noun.c_str() : "Source",
-              c.space().source_label().c_str());
+  const std::string source = (kind != nullptr ? kind->source_noun : std::string("Source")) + ": " +
+                             c.space().source_label();
+  flow.next_separated(ImGui::CalcTextSize(source.c_str()).x);
+  ImGui::TextUnformatted(source.c_str());
   widgets_.note("toolbar:model");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.space().description().c_str());
 }
@@ -328,18 +379,29 @@ void GalleryView::draw_side_panel(PanelContext& ctx) {
   if (inspecting && ImGui::Button("Back to current best")) c.queue(intent::Inspect{-1});
   // The tabs take what the previews and the footer leave; a tab longer than that scrolls
   // inside itself, so the previews, the tab names and the footer stay in view.
-  const float footer = ImGui::GetTextLineHeightWithSpacing() * kFooterLines;
+  // The footer (design space, keys) takes what its wrapped text needs at this width; a fixed
+  // three lines cut the keys off in a narrow side column.
+  char keys[256];
+  std::snprintf(keys, sizeof keys,
+                "Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save, "
+                "Ctrl+Q quit; Shift over a cell: all it changes%s",
+                c.session().settings().grid_size == 3 ? "1-9" : "A-Y",
+                c.space().uses_camera() ? "; drag a cell to orbit" : "");
+  const std::string design = "Design space: " + c.space().description();
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float wrap = ImGui::GetContentRegionAvail().x;
+  const float footer = 3 * style.ItemSpacing.y +
+                       ImGui::CalcTextSize(design.c_str(), nullptr, false, wrap).y +
+                       ImGui::CalcTextSize(keys, nullptr, false, wrap).y;
   ImGui::BeginChild("tabs", ImVec2(0, std::max(120.0f, ImGui::GetContentRegionAvail().y - footer)),
                     false);
   draw_tabs(ctx);
   ImGui::EndChild();
   ImGui::Separator();
-  ImGui::TextDisabled("Design space: %s", c.space().description().c_str());
-  ImGui::TextWrapped(
-      "Keys: %s pick a cell, Backspace/Ctrl+Z undo, Ctrl+Y redo, Ctrl+S save, "
-      "Ctrl+Q quit; Shift over a cell: all it changes%s",
-      c.session().settings().grid_size == 3 ? "1-9" : "A-Y",
-      c.space().uses_camera() ? "; drag a cell to orbit" : "");
+  ImGui::PushStyleColor(ImGuiCol_Text, style.Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", design.c_str());
+  ImGui::PopStyleColor();
+  ImGui::TextWrapped("%s", keys);
 }
 
 void GalleryView::draw_tabs(PanelContext& ctx) {

@@ -251,7 +251,7 @@ int run_body_simulation(const ArgParser& args) {
       return distance.rms_to_betas_mm(xs, target);
     };
     // The pixel person sees how far a cell is from the body in mind as the window measures
-    // look-alikes: its largest visible shift (2 px of a 210 px cell is 20 mm of the body's
+    // look-alikes: its largest visible shift (2 px of a 230 px cell is 19 mm of the body's
     // outline at the default framing, however little of the body moves), enlarged as the grid
     // is framed. The mm person judges by the RMS distance.
     const bench::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {

@@ -70,7 +70,7 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --target-betas B..  the same target for every trial (missing betas are 0)
   --user zoom-jnd     the only user here; --jnd-mm D (default 5)
   --jnd-px D          a person who resolves D pixels in a cell of --cell-px N pixels
-                      (default 210, the default window's): D px = D * 2144 / N mm, used as
+                      (default 230, the default window's): D px = D * 2144 / N mm, used as
                       the person's threshold, the session's and the duplicate_grids count's,
                       and the planes' smallest side (--min-plane-mm) when it is larger
   --grid 3|5, --levels L   the window's grid and clicks per plane

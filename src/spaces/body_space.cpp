@@ -120,13 +120,13 @@ double BodySpace::frame_scale(const std::vector<Eigen::VectorXd>& xs) const {
 
 app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
   // Neighbouring cells must differ by what the person can see in a cell of this size (at the
-  // default window's 210 px, 2 px are 20 mm); the session's default until the size is known.
+  // default window's 230 px, 2 px are 19 mm); the session's default until the size is known.
   return cell_px > 0 ? app::zoom_policy_for_cells(cell_px) : app::ZoomPolicy{};
 }
 
 double BodySpace::min_plane_length(int cell_px) const {
   // A plane shorter than what a pixel-limited person sees shows look-alike cells however its
-  // first grid is widened (the benchmark's pixel person has the same rule): at 210 px, 20 mm.
+  // first grid is widened (the benchmark's pixel person has the same rule): at 230 px, 19 mm.
   return cell_px > 0 ? std::max(sps::SearchOptions{}.min_plane_length,
                                 app::look_alike_mm(cell_px, app::kDefaultJndPx))
                      : 0.0;

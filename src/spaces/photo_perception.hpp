@@ -40,7 +40,7 @@ constexpr double kPhotoJndDeltaE = 2.3;
 // clear difference (W. Mokrzycki, M. Tatol, "Color difference Delta E - a survey", Machine
 // Graphics and Vision 20(4), 2011: 2-3.5 noticed by an inexperienced observer, 3.5-5 a clear
 // difference). One JND is what a person notices between two large patches side by side; in a
-// grid of thumbnails (125-210 px at the default window), cells one JND apart were hard to
+// grid of thumbnails (136-230 px at the default window), cells one JND apart were hard to
 // tell apart when looked at, so the grid keeps them a clear difference apart.
 constexpr double kPhotoDistinctDeltaE = 3.5;
 
