@@ -1,6 +1,7 @@
 #include "app/cell_visibility.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/session.hpp"
 
@@ -9,6 +10,16 @@ namespace app {
 double cell_frame_scale(double tallest_m) {
   if (!(tallest_m > 0.0)) return 1.0;
   return std::clamp((tallest_m + kCellHeadroomM) / kCellFrameTopM, 0.5, 1.0);
+}
+
+GridFrame cell_frame_for_band(double bottom_m, double top_m) {
+  const double shown = top_m - bottom_m;
+  if (!std::isfinite(bottom_m) || !std::isfinite(top_m) || !(shown > 0.0)) return {};
+  const double scale = std::clamp(shown / (kCellFrameTopM - kCellFrameBottomM), 0.25, 1.0);
+  if (scale > 1.0 - 1e-9) return {};
+  // The camera scaled by s about height p shows height y where the default shows
+  // p + (y - p) / s: the band's bottom lands on the frame's, p = (bottom - s b0) / (1 - s).
+  return {scale, (bottom_m - scale * kCellFrameBottomM) / (1.0 - scale)};
 }
 
 double millimetres_per_pixel(double cell_px) {

@@ -1,11 +1,12 @@
 // What a person can see of a body grid cell: the body cells' default camera shows a frame of a
 // fixed height at the body, so a cell of N pixels shows frame / N millimetres per pixel, and
 // two bodies whose outlines differ by less than a couple of pixels look alike. A grid is
-// framed to its tallest body (cell_frame_scale), which shows its differences 1/s larger; the
-// body space's perceptual distance reports them as they look at the default frame, so one
-// threshold per cell size holds for every grid. The window takes its look-alike threshold from
-// the cell size it really shows, and the body benchmark's pixel person (`simulate --function
-// body --jnd-px D --cell-px N`) uses the same rule and the same framing.
+// framed to its tallest body (cell_frame_scale), or in close-ups on the band of heights where
+// its bodies differ (cell_frame_for_band; spaces/body_framing.hpp), which shows its
+// differences 1/s larger; the body space's perceptual distance reports them as they look at
+// the default frame, so one threshold per cell size holds for every grid. The window takes its
+// look-alike threshold from the cell size it really shows, and the body benchmark's pixel person
+// (`simulate --function body --jnd-px D --cell-px N`) uses the same rule and the same framing.
 #pragma once
 
 namespace app {
@@ -26,6 +27,10 @@ constexpr double kDefaultJndPx = 2.0;
 // 1.398 + 3.978 * tan(9 degrees) (render_tests check the match).
 constexpr double kCellFrameTopM = 2.028;
 
+// The lowest point (m, below the floor) the default body camera shows at the body: 21 degrees
+// below level from the same eye, 1.398 - 3.978 * tan(21 degrees).
+constexpr double kCellFrameBottomM = -0.1289;
+
 // Room left above the tallest body of a grid framed to it (m).
 constexpr double kCellHeadroomM = 0.05;
 
@@ -34,6 +39,20 @@ constexpr double kCellHeadroomM = 0.05;
 // that body 1/s larger, with kCellHeadroomM above its head. In [0.5, 1]: a grid with a body
 // over 1.98 m keeps the default framing; a height that is not a positive number gives 1.
 double cell_frame_scale(double tallest_m);
+
+// How a grid's cells are framed: the default camera scaled by `scale` about the point
+// `pivot_m` above the floor under the body (render::Camera::scaled_about_height), everything
+// 1/scale larger. {1, 0} is the default framing; a grid framed to its tallest body keeps the
+// floor where it was (pivot 0).
+struct GridFrame {
+  double scale = 1.0;
+  double pivot_m = 0.0;
+};
+
+// The frame that shows the heights [bottom_m, top_m] (m above the floor) over the cell's whole
+// height, as the default frame shows [kCellFrameBottomM, kCellFrameTopM]; scale in [0.25, 1]
+// (a band taller than the default frame gets the default). Not finite or empty: {1, 0}.
+GridFrame cell_frame_for_band(double bottom_m, double top_m);
 
 // Millimetres of body per pixel in a cell `cell_px` high (NaN-free: cell_px is clamped to 1).
 double millimetres_per_pixel(double cell_px);

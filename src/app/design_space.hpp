@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "app/cell_visibility.hpp"
 #include "app/constraint_projector.hpp"
 #include "app/session.hpp"
 #include "render/camera.hpp"
@@ -84,12 +85,12 @@ struct MeasurementPanelRequest {
 class SpacePerception {
  public:
   virtual ~SpacePerception() = default;
-  // The distance as the grid shows it: a space that frames each grid (frame_scale) reports
-  // a grid's differences as they look at its default framing.
+  // The distance as the grid shows it: a space that frames each grid (grid_frame) reports a
+  // grid's differences as they look in that framing, in units of its default framing.
   virtual PairwiseDistance perceptual_distance() const = 0;
-  // How a grid of these points is framed: 1 = the cells' default camera, s < 1 = the camera
-  // scaled by s about the floor (render::Camera::scaled_about_floor), everything 1/s larger.
-  virtual double frame_scale(const std::vector<Eigen::VectorXd>& xs) const = 0;
+  // How a grid of these points is framed: {1, 0} = the cells' default camera; else the camera
+  // scaled by s about a height (render::Camera::scaled_about_height), everything 1/s larger.
+  virtual GridFrame grid_frame(const std::vector<Eigen::VectorXd>& xs) const = 0;
   // How the zoom adapts when the cells are `cell_px` pixels high (0: not known yet): the
   // threshold under which two cells look alike follows from what a pixel shows.
   virtual ZoomPolicy zoom_policy(int cell_px) const = 0;
@@ -198,6 +199,12 @@ class DesignSpace {
   // std::runtime_error naming the file and the problem.
   virtual std::string export_point(const Eigen::VectorXd& x,
                                    const std::filesystem::path& path) const = 0;
+
+  // --- Framing: a space whose cells show a camera may frame a grid on the part of the cells
+  // where they differ (close-ups) or show them whole; the perception's distance follows.
+  // Returns whether the space frames that way now (false: it has no close-ups). ---
+  virtual bool set_close_ups(bool /*on*/) { return false; }
+  virtual bool close_ups() const { return false; }
 
   // --- Optional facets: null where the space has none ---
   virtual const SpacePerception* perception() const { return nullptr; }

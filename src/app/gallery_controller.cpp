@@ -271,18 +271,18 @@ void GalleryController::apply(const Intent& i) {
           [&](const intent::SetCellPixels& p) {
             if (p.pixels == cell_pixels_ || p.pixels < 1) return;
             cell_pixels_ = p.pixels;
-            const SpacePerception* perception = space_->perception();
-            if (perception == nullptr) return;
-            session_->set_zoom_policy(perception->zoom_policy(cell_pixels_));
-            // From the next plane on, as the zoom policy: the grid on screen stays.
-            const double length = perception->min_plane_length(cell_pixels_);
-            if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
-              session_->set_min_plane_length(length);
+            follow_cells();
+          },
+          [&](const intent::SetCloseUps& f) {
+            if (space_->close_ups() == f.on) return;
+            space_->set_close_ups(f.on);
+            // The session's distance is the grids' as framed: install the new one.
+            if (const SpacePerception* perception = space_->perception();
+                perception != nullptr && options_.perceptual_zoom) {
+              session_->set_perceptual_distance(perception->perceptual_distance(),
+                                                perception->zoom_policy(cell_pixels_));
             }
-            if (const double t = perception->choice_temperature(cell_pixels_);
-                t > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
-              session_->set_choice_temperature(t);
-            }
+            follow_cells();
           },
           [&](const intent::Inspect& n) {
             inspected_ = n.history_index >= 0 && n.history_index < session_->planes_done()
@@ -563,6 +563,21 @@ int GalleryController::grid_for(const DesignSpace& space, int asked) const {
   if (options_.catalogue == nullptr)
     throw std::logic_error("the controller needs a catalogue of spaces for their default grid");
   return options_.catalogue->get(space.settings().kind).grid_size;
+}
+
+void GalleryController::follow_cells() {
+  const SpacePerception* perception = space_->perception();
+  if (perception == nullptr) return;
+  session_->set_zoom_policy(perception->zoom_policy(cell_pixels_));
+  // From the next plane on, as the zoom policy: the grid on screen stays.
+  const double length = perception->min_plane_length(cell_pixels_);
+  if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
+    session_->set_min_plane_length(length);
+  }
+  if (const double t = perception->choice_temperature(cell_pixels_);
+      t > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
+    session_->set_choice_temperature(t);
+  }
 }
 
 void GalleryController::install_perception() {

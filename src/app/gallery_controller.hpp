@@ -106,12 +106,17 @@ struct GoToTargets {
 struct SetCellPixels {
   int pixels = 0;
 };
+// Frame body grids on where their cells differ, or whole (DesignSpace::set_close_ups): the
+// look-alike test of the zoom levels still to come follows; the grid on screen stays.
+struct SetCloseUps {
+  bool on = true;
+};
 }  // namespace intent
 
 using Intent = std::variant<intent::ClickCell, intent::UndoClick, intent::UndoPlane, intent::Redo,
                             intent::StartOver, intent::Open, intent::Resume, intent::StartNew,
                             intent::Export, intent::Inspect, intent::UsePoint, intent::SetHolds,
-                            intent::GoToTargets, intent::SetCellPixels>;
+                            intent::GoToTargets, intent::SetCellPixels, intent::SetCloseUps>;
 
 enum class MessageKind { kInfo, kSuccess, kError };
 struct Message {
@@ -212,6 +217,9 @@ class GalleryController {
   void adopt(Session session, std::unique_ptr<DesignSpace> space);
   // The space's perceptual hooks on `session_` (never saved, so after every load too).
   void install_perception();
+  // The zoom policy, the planes' smallest side and the choice temperature for the cells' size
+  // and framing now (the grid on screen stays).
+  void follow_cells();
   // `asked`, or the kind's default grid where it is 0.
   int grid_for(const DesignSpace& space, int asked) const;
   void after_change(const sps::Plane& plane_before);

@@ -10,7 +10,8 @@ int toolbar_rows_for(float width) {
   return width >= kToolbarOneRowWidth / 2 ? 2 : 3;
 }
 
-GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell) {
+GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell,
+                             int toolbar_rows) {
   GalleryLayout l;
   const float n = static_cast<float>(std::max(1, grid_size));
   l.gap = kLayoutGap;
@@ -30,7 +31,7 @@ GalleryLayout compute_layout(float width, float height, int grid_size, int fixed
   l.grid = {kLayoutMargin, top, grid, grid};
   const float side_x = l.grid.x + grid + 2 * l.gap;
   const float side_w = std::max(120.0f, width - side_x - kLayoutMargin);
-  l.toolbar_rows = toolbar_rows_for(side_w);
+  l.toolbar_rows = toolbar_rows > 0 ? std::min(toolbar_rows, 6) : toolbar_rows_for(side_w);
   l.toolbar = {side_x, top, side_w, kToolbarRowHeight * static_cast<float>(l.toolbar_rows)};
   l.messages = {side_x, l.toolbar.y + l.toolbar.h, side_w, kMessageHeight};
   const float side_top = l.messages.y + kMessageHeight;

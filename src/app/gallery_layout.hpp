@@ -28,13 +28,16 @@ constexpr float kLayoutGap = 6.0f;
 constexpr float kToolbarRowHeight = 26.0f;
 // The toolbar's items side by side at the default font (buttons, view toggles, plane and
 // click count, source name); a narrower side column wraps them onto more rows.
-constexpr float kToolbarOneRowWidth = 940.0f;
+constexpr float kToolbarOneRowWidth = 1040.0f;
 constexpr float kMessageHeight = 40.0f;       // two lines of text, wrapped
 constexpr float kSidePanelMinWidth = 360.0f;  // below this the previews get too small
 constexpr float kSidePanelShare = 0.28f;      // of the window width at most, so the grid rules
 
 // `fixed_cell` > 0 fixes the cell edge (bench-gui, tests); 0 fits the grid to the window.
-GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell = 0);
+// `toolbar_rows` > 0: the rows the toolbar really took (the view counts them as it wraps; at
+// most 6); 0: toolbar_rows_for() estimates them from the column's width.
+GalleryLayout compute_layout(float width, float height, int grid_size, int fixed_cell = 0,
+                             int toolbar_rows = 0);
 
 // How many rows the toolbar takes in a side column `width` wide (1-3).
 int toolbar_rows_for(float width);

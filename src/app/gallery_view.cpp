@@ -74,6 +74,8 @@ void GalleryView::sync_space(GalleryController& c) {
   framed_points_.clear();  // another space frames the same points differently
   sliders_.space_opened();
   space_generation_ = c.space_generation();
+  // A space opens with close-ups; the window's choice holds for every search.
+  if (c.space().close_ups() != prefs_.close_ups) c.queue(intent::SetCloseUps{prefs_.close_ups});
   new_search_.space_opened(c, prefs_);
   save_.space_opened(c.space(), prefs_);
 }
@@ -82,7 +84,8 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   sync_space(c);
   DesignSpace& space = c.space();
   const int n = c.session().settings().grid_size;
-  layout_ = compute_layout(width, height, n, options_.cell_size);
+  // The toolbar's rows as the last frame drew them (the fonts decide), estimated at first.
+  layout_ = compute_layout(width, height, n, options_.cell_size, toolbar_rows_drawn_);
   dpi = std::max(1.0f, dpi);
   dpi_ = dpi;
   cell_pixels_ = static_cast<int>(std::lround(dpi * layout_.cell));
@@ -122,13 +125,14 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
     }
     return true;
   };
-  if (!same(xs, framed_points_)) {
+  if (!same(xs, framed_points_) || space.close_ups() != framed_close_ups_) {
+    framed_close_ups_ = space.close_ups();
     const SpacePerception* perception = space.perception();
-    const auto scale =
-        static_cast<float>(perception != nullptr ? perception->frame_scale(xs) : 1.0);
+    const GridFrame frame = perception != nullptr ? perception->grid_frame(xs) : GridFrame{};
     framed_points_ = std::move(xs);
-    if (std::abs(scale - grid_frame_scale_) > 1e-4f) {
-      grid_frame_scale_ = scale;
+    if (std::abs(frame.scale - grid_frame_.scale) > 1e-4 ||
+        std::abs(frame.pivot_m - grid_frame_.pivot_m) > 1e-4) {
+      grid_frame_ = frame;
       ++grid_frame_version_;
     }
   }
@@ -161,7 +165,8 @@ void GalleryView::draw_cells(GalleryController& c) {
   // sample); the settled grid is drawn again with full antialiasing.
   const bool fast = c.animating() || grid_.dragging() || orbiting_;
   bool grid_drew = false;
-  const render::Camera grid_camera = camera_.scaled_about_floor(grid_frame_scale_);
+  const render::Camera grid_camera = camera_.scaled_about_height(
+      static_cast<float>(grid_frame_.scale), static_cast<float>(grid_frame_.pivot_m));
   CellLook grid_look = look;
   if (look.camera != nullptr) grid_look.camera = &grid_camera;
   // Both counters only grow, so their sum changes whenever either does.
@@ -241,6 +246,7 @@ class ToolbarFlow {
     if (x + width > right_) {
       // ImGui starts a new row at the window's left edge, under the grid: move it back.
       ImGui::SetCursorScreenPos(ImVec2(left_, ImGui::GetCursorScreenPos().y));
+      ++rows_;
       return false;
     }
     ImGui::SameLine();
@@ -253,10 +259,12 @@ class ToolbarFlow {
     ImGui::TextDisabled("|");
     ImGui::SameLine();
   }
+  int rows() const { return rows_; }
 
  private:
   float left_, right_;
   bool first_ = true;
+  int rows_ = 1;
 };
 
 float button_width(const char* label) {
@@ -298,11 +306,26 @@ void GalleryView::draw_toolbar(GalleryController& c) {
     const char* labels[] = {"Front", "Side", "3/4"};
     float width = ImGui::CalcTextSize("View:").x;
     for (const char* label : labels) width += spacing + radio_width(label);
+    // The checkbox is as wide as a radio button with the same label.
+    width += spacing + radio_width("Close-ups");
     flow.next_separated(width);
     ImGui::TextUnformatted("View:");
     for (int i = 0; i < 3; ++i) {
       ImGui::SameLine();
       if (ImGui::RadioButton(labels[i], active_preset_ == i)) set_preset(i);
+    }
+    ImGui::SameLine();
+    bool close_ups = prefs_.close_ups;
+    if (ImGui::Checkbox("Close-ups", &close_ups)) {
+      prefs_.close_ups = close_ups;
+      c.queue(intent::SetCloseUps{close_ups});
+    }
+    widgets_.note("toolbar:close-ups");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "Frame each grid on the part of the body where its nine bodies differ (after the "
+          "first zoom mostly the trunk, shown up to twice as large), or show them whole.\n"
+          "The zoom keeps the cells visibly different as framed.");
     }
   }
   const auto& s = c.session().settings();
@@ -319,6 +342,7 @@ void GalleryView::draw_toolbar(GalleryController& c) {
   ImGui::TextUnformatted(source.c_str());
   widgets_.note("toolbar:model");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", c.space().description().c_str());
+  toolbar_rows_drawn_ = flow.rows();
 }
 
 void GalleryView::draw_messages(const GalleryController& c) {

@@ -119,13 +119,16 @@ class GalleryView {
   render::Camera camera_;
   int active_preset_ = 0;  // -1 after a free orbit
   int camera_version_ = 0;
-  // The grid is framed to its tallest body (SpacePerception::frame_scale): the cells see
-  // camera_ scaled by this; the previews keep camera_, so the best and the start compare by
-  // height. The version counts its changes (the cells redraw on camera or framing changes).
-  float grid_frame_scale_ = 1.0f;
+  // The grid's framing (SpacePerception::grid_frame: its tallest body, or the band where its
+  // bodies differ): the cells see camera_ scaled by it; the previews keep camera_, so the best
+  // and the start compare by height. The version counts its changes (the cells redraw on
+  // camera or framing changes).
+  GridFrame grid_frame_;
   int grid_frame_version_ = 0;
-  std::vector<Eigen::VectorXd> framed_points_;  // the points grid_frame_scale_ is for
-  bool orbiting_ = false;  // orbit() was called since the last build() (benchmark frames)
+  std::vector<Eigen::VectorXd> framed_points_;  // the points grid_frame_ is for
+  bool framed_close_ups_ = false;               // and the framing it is for
+  int toolbar_rows_drawn_ = 0;  // rows the toolbar took last frame (0: none drawn yet)
+  bool orbiting_ = false;       // orbit() was called since the last build() (benchmark frames)
 
   std::vector<CellView> cells_;
   CellView best_, start_, inspect_;

@@ -129,6 +129,7 @@ class Session {
   void set_zoom_policy(const ZoomPolicy& policy) { policy_ = policy; }
   const ZoomPolicy& zoom_policy() const { return policy_; }
   bool has_perceptual_distance() const { return static_cast<bool>(distance_); }
+  const PairwiseDistance& perceptual_distance() const { return distance_; }
   // How much each search coordinate changes the body over its range (mm, e.g.
   // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and
   // shapes its planes with it from the next plane on (saved with the search). Empty: none.

@@ -23,8 +23,8 @@ constexpr std::size_t kMaxPrefsBytes = 1u << 20;
 
 // The window's own fields; any other string field is a source panel's.
 const std::set<std::string> kPrefsFields{
-    "window_width",  "window_height", "save_folder", "save_name",  "view_preset",  "side_tab",
-    "typed_targets", "imperial",      "open_panel",  "save_panel", "history_panel"};
+    "window_width", "window_height", "save_folder", "save_name",  "view_preset", "close_ups",
+    "side_tab",     "typed_targets", "imperial",    "open_panel", "save_panel",  "history_panel"};
 
 // Moves a broken ui.json out of the way (never deleted: it may be something the user put there
 // by mistake) and says where it went.
@@ -82,6 +82,7 @@ UiPrefs load_ui_prefs(const std::filesystem::path& path, std::string* problem) {
     p.side_tab = tab;
   }
   p.imperial = get_bool("imperial", false);
+  p.close_ups = get_bool("close_ups", true);
   // Every other short string field belongs to a kind's source panel.
   for (const auto& [name, value] : j.items()) {
     if (p.sources.size() >= 32) break;
@@ -105,7 +106,8 @@ bool save_ui_prefs(const UiPrefs& p, const std::filesystem::path& path) {
   nlohmann::json j = {{"window_width", p.window_width},   {"window_height", p.window_height},
                       {"save_folder", p.save_folder},     {"save_name", p.save_name},
                       {"view_preset", p.view_preset},     {"side_tab", p.side_tab},
-                      {"typed_targets", p.typed_targets}, {"imperial", p.imperial}};
+                      {"typed_targets", p.typed_targets}, {"imperial", p.imperial},
+                      {"close_ups", p.close_ups}};
   for (const auto& [name, value] : p.sources) {
     if (kPrefsFields.count(name) == 0) j[name] = value;
   }

@@ -16,6 +16,8 @@ struct UiPrefs {
   std::string save_folder;
   std::string save_name;
   int view_preset = 0;  // 0 front, 1 side, 2 three-quarter
+  // Body grids framed on where their cells differ (DesignSpace::set_close_ups), or whole.
+  bool close_ups = true;
   // The side panel's open tab (see side_panel_tabs() in gallery_view.hpp).
   std::string side_tab = "measurements";
   // What each kind of search remembers for its New-search panel, under the kind's own names
@@ -29,8 +31,8 @@ struct UiPrefs {
   bool operator==(const UiPrefs& o) const {
     return window_width == o.window_width && window_height == o.window_height &&
            save_folder == o.save_folder && save_name == o.save_name &&
-           view_preset == o.view_preset && side_tab == o.side_tab && sources == o.sources &&
-           typed_targets == o.typed_targets && imperial == o.imperial;
+           view_preset == o.view_preset && close_ups == o.close_ups && side_tab == o.side_tab &&
+           sources == o.sources && typed_targets == o.typed_targets && imperial == o.imperial;
   }
   bool operator!=(const UiPrefs& o) const { return !(*this == o); }
 };

@@ -1,5 +1,6 @@
 #include "body/shape_distance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -82,6 +83,65 @@ std::vector<double> ShapeDistance::rms_to_betas_mm(const std::vector<Eigen::Vect
 std::vector<double> ShapeDistance::max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
                                                    const Eigen::VectorXf& target_betas) const {
   return to_betas_mm(xs, target_betas, &ShapeDistance::max_mm);
+}
+
+namespace {
+
+// The largest norm of the listed vertices of a 3V displacement.
+double largest_of(const Eigen::VectorXf& displacement, const std::vector<int>& vertices) {
+  float largest = 0.0f;
+  for (const int v : vertices) {
+    largest = std::max(largest, displacement.segment<3>(3 * static_cast<Eigen::Index>(v)).norm());
+  }
+  return static_cast<double>(largest);
+}
+
+void check_vertices(const std::vector<int>& vertices, int count) {
+  for (const int v : vertices) {
+    if (v < 0 || v >= count) {
+      throw std::invalid_argument("shape distance: vertex " + std::to_string(v) +
+                                  " is not one of the model's " + std::to_string(count));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<double> ShapeDistance::max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                                   const Eigen::VectorXf& target_betas,
+                                                   const std::vector<int>& vertices) const {
+  check_vertices(vertices, vertex_count());
+  const Eigen::VectorXd target = target_point(target_betas, dims());
+  std::vector<double> out;
+  out.reserve(xs.size());
+  for (const auto& x : xs) out.push_back(largest_of(displacement_mm(x, target), vertices));
+  return out;
+}
+
+Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs,
+                                               const std::vector<int>& vertices) const {
+  check_vertices(vertices, vertex_count());
+  const Eigen::Index n = static_cast<Eigen::Index>(xs.size());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
+  if (n == 0) return out;
+  Eigen::MatrixXf diffs(dims(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    check_size(xs[static_cast<std::size_t>(i)], dims());
+    diffs.col(i) = (xs[static_cast<std::size_t>(i)] - xs.front()).cast<float>();
+  }
+  const Eigen::MatrixXf disp = unit_dirs_mm_ * diffs;  // 3V x n, relative to the first body
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = i + 1; j < n; ++j) {
+      float largest = 0.0f;
+      for (const int v : vertices) {
+        const Eigen::Index r = 3 * static_cast<Eigen::Index>(v);
+        largest = std::max(largest, (disp.col(i).segment<3>(r) - disp.col(j).segment<3>(r)).norm());
+      }
+      out(i, j) = static_cast<double>(largest);
+      out(j, i) = out(i, j);
+    }
+  }
+  return out;
 }
 
 Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs) const {

@@ -41,6 +41,14 @@ class ShapeDistance {
   // Largest vertex distance between every pair of bodies (symmetric, zero diagonal).
   Eigen::MatrixXd pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs) const;
 
+  // The same two over the given vertices only (what a cell framed on part of the body shows;
+  // indices below vertex_count(), none: 0 everywhere).
+  std::vector<double> max_to_betas_mm(const std::vector<Eigen::VectorXd>& xs,
+                                      const Eigen::VectorXf& target_betas,
+                                      const std::vector<int>& vertices) const;
+  Eigen::MatrixXd pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs,
+                                  const std::vector<int>& vertices) const;
+
   // How much each search coordinate changes the body over its whole range [0, 1]: RMS vertex
   // displacement in mm (the perceptual scale of each direction).
   Eigen::VectorXd direction_rms_mm() const;

@@ -125,12 +125,14 @@ int run(int argc, char** argv) {
   for (std::size_t i = 0; i < grid.size(); i += 4) {
     grid[i] = 15, grid[i + 1] = 15, grid[i + 2] = 15, grid[i + 3] = 255;
   }
-  // Front view, as the window starts, framed to the grid's tallest body as the window frames it.
+  // Front view, as the window starts, framed as the window frames the grid.
   std::vector<Eigen::VectorXd> xs;
   for (const auto& p : points) xs.push_back(p.x);
   const app::SpacePerception* perception = space->perception();
-  const render::Camera camera = render::Camera{}.scaled_about_floor(
-      static_cast<float>(perception != nullptr ? perception->frame_scale(xs) : 1.0));
+  const app::GridFrame frame =
+      perception != nullptr ? perception->grid_frame(xs) : app::GridFrame{};
+  const render::Camera camera = render::Camera{}.scaled_about_height(
+      static_cast<float>(frame.scale), static_cast<float>(frame.pivot_m));
   app::CellLook look;
   look.camera = space->uses_camera() ? &camera : nullptr;
   // The CSV is built in memory and written with the PNGs, through the atomic writer: a full

@@ -17,8 +17,8 @@
 #include "body/measurements.hpp"
 #include "body/model_loader.hpp"
 #include "body/shape_distance.hpp"
-#include "body/standing_height.hpp"
 #include "cli/simulate_common.hpp"
+#include "spaces/body_framing.hpp"
 #include "spaces/body_holds.hpp"
 #include "spaces/body_space.hpp"
 
@@ -106,6 +106,7 @@ int run_body_simulation(const ArgParser& args) {
                               "jnd-mm",
                               "jnd-px",
                               "cell-px",
+                              "framing",
                               "trials",
                               "iterations",
                               "seed",
@@ -142,6 +143,14 @@ int run_body_simulation(const ArgParser& args) {
     throw ArgError("--jnd-px and --jnd-mm: give one (the person's threshold in pixels or in mm)");
   }
   const double pixel_mm = app::look_alike_mm(cell_px, jnd_px);
+  // The pixel person sees each grid framed as the window frames it (--framing: close-ups, the
+  // window's default, or the whole body).
+  const std::string framing_name = args.get_or("framing", "close-ups");
+  if (framing_name != "close-ups" && framing_name != "whole-body") {
+    throw ArgError("--framing: close-ups or whole-body, not '" + framing_name + "'");
+  }
+  const spaces::BodyFraming framing = framing_name == "whole-body" ? spaces::BodyFraming::kWholeBody
+                                                                   : spaces::BodyFraming::kCloseUps;
   const double jnd_mm = pixel_person ? pixel_mm : args.get_double("jnd-mm", 5.0);
   const double clone_mm = pixel_person ? pixel_mm : app::kCloneMm;
   const int trials = args.get_int("trials", 10);
@@ -168,8 +177,12 @@ int run_body_simulation(const ArgParser& args) {
   if (target_mode != "random") throw ArgError("--target: use random, or give --target-betas");
   sps::SearchOptions options = read_search_options(args);
   // A plane shorter than what the pixel person sees would show look-alike cells however the
-  // first grid is widened: its sides are at least the threshold long.
-  if (pixel_person) options.min_plane_length = std::max(options.min_plane_length, pixel_mm);
+  // first grid is widened: its sides are at least the threshold long, in the framing the
+  // grids typically get (BodySpace::min_plane_length, the same rule).
+  if (pixel_person) {
+    options.min_plane_length =
+        std::max(options.min_plane_length, pixel_mm * spaces::typical_frame_scale(framing));
+  }
   options.min_plane_length = args.get_double("min-plane-mm", options.min_plane_length);
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
     throw ArgError("--min-plane-mm must be in [0, 10000)");
@@ -206,9 +219,8 @@ int run_body_simulation(const ArgParser& args) {
 
   const body::Model model = load_benchmark_model(args, components);
   const int k = model.component_count();
-  const auto shared_distance = std::make_shared<const body::ShapeDistance>(model);
-  const body::ShapeDistance& distance = *shared_distance;
-  const auto heights = std::make_shared<const body::StandingHeights>(model);
+  const auto framed = std::make_shared<const spaces::FramedBodies>(model, framing);
+  const body::ShapeDistance& distance = framed->distance();
   Eigen::VectorXf fixed_target;
   if (args.has("target-betas")) {
     const auto b = args.get_doubles("target-betas");
@@ -237,7 +249,7 @@ int run_body_simulation(const ArgParser& args) {
   // The pixel person sees the grids as the window shows them, each framed to its tallest body
   // (spaces::framed_body_distance); the mm person's threshold is in millimetres of the body.
   const app::PairwiseDistance pairwise =
-      pixel_person ? spaces::framed_body_distance(shared_distance, heights)
+      pixel_person ? spaces::seen_body_distance(framed)
                    : app::PairwiseDistance([&distance](const std::vector<Eigen::VectorXd>& xs) {
                        return distance.pairwise_max_mm(xs);
                      });
@@ -255,10 +267,7 @@ int run_body_simulation(const ArgParser& args) {
     // outline at the default framing, however little of the body moves), enlarged as the grid
     // is framed. The mm person judges by the RMS distance.
     const bench::TargetDistance seen = [&](const std::vector<Eigen::VectorXd>& xs) {
-      std::vector<double> shift = distance.max_to_betas_mm(xs, target);
-      const double scale = spaces::body_grid_frame_scale(*heights, xs);
-      for (double& d : shift) d /= scale;
-      return shift;
+      return framed->seen_to_betas_mm(xs, target);
     };
     app::SessionSettings settings;
     settings.space = "body";  // the benchmark's function (--function body), not a default
@@ -299,8 +308,8 @@ int run_body_simulation(const ArgParser& args) {
         << " components), user zoom-jnd (" << grid << "x" << grid << ", " << levels
         << " levels, JND " << jnd_mm << " mm";
   if (pixel_person) {
-    title << " = " << jnd_px << " px in a " << cell_px << " px cell; look-alikes under " << clone_mm
-          << " mm";
+    title << " = " << jnd_px << " px in a " << cell_px << " px cell, " << framing_name
+          << "; look-alikes under " << clone_mm << " mm";
   }
   title << (adapt ? "" : ", no zoom adaptation")
         << (perceptual_scale ? "" : ", no perceptual scale")

@@ -72,7 +72,11 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --jnd-px D          a person who resolves D pixels in a cell of --cell-px N pixels
                       (default 230, the default window's): D px = D * 2144 / N mm, used as
                       the person's threshold, the session's and the duplicate_grids count's,
-                      and the planes' smallest side (--min-plane-mm) when it is larger
+                      and the planes' smallest side (--min-plane-mm) when it is larger;
+                      each grid framed as the window frames it
+  --framing close-ups|whole-body   with --jnd-px: grids framed on the band of the body where
+                      their cells differ, as the window does by default (close-ups), or on
+                      the whole body (whole-body); out of view differences count for nothing
   --grid 3|5, --levels L   the window's grid and clicks per plane
   --no-adapt          do not give the session the perceptual distance (fixed factor-2 zoom)
   --distinct-mm D     the session's smallest difference between cells (default 10)

@@ -49,10 +49,15 @@ void Camera::orbit(float dx_pixels, float dy_pixels) {
 }
 
 Camera Camera::scaled_about_floor(float s) const {
+  return scaled_about_height(s, 0.0f);
+}
+
+Camera Camera::scaled_about_height(float s, float pivot_y) const {
   s = std::clamp(std::isfinite(s) ? s : 1.0f, 0.1f, 10.0f);
+  const glm::vec3 pivot(0.0f, std::isfinite(pivot_y) ? pivot_y : 0.0f, 0.0f);
   Camera scaled = *this;
   scaled.distance = distance * s;
-  scaled.target = target * s;
+  scaled.target = pivot + (target - pivot) * s;
   return scaled;
 }
 

@@ -32,6 +32,10 @@ struct Camera {
   // the body (the origin): everything appears 1/s larger, the floor stays where it was on
   // screen and the orbit angles are kept. s is clamped to [0.1, 10].
   Camera scaled_about_floor(float s) const;
+  // The same about the point `pivot_y` metres above the floor point: heights near the pivot
+  // stay where they were on screen (a grid framed on a band of the body). s as above; a pivot
+  // that is not finite is taken as 0.
+  Camera scaled_about_height(float s, float pivot_y) const;
 
   glm::vec3 eye() const;
   glm::mat4 view() const;

@@ -57,8 +57,7 @@ class BodyContent : public app::CellContent {
 BodySpace::BodySpace(body::Model model, std::string source)
     : model_(std::move(model)),
       source_(std::move(source)),
-      distance_(std::make_shared<const body::ShapeDistance>(model_)),
-      heights_(std::make_shared<const body::StandingHeights>(model_)),
+      framed_(std::make_shared<const FramedBodies>(model_, BodyFraming::kCloseUps)),
       eye_tints_(eye_tints(model_)) {}
 
 std::vector<std::string> BodySpace::measurement_names() const {
@@ -95,27 +94,21 @@ app::TargetSolve BodySpace::solve_targets(const std::vector<std::string>& texts,
   return {result.x, result.reached, result.message};
 }
 
-double body_grid_frame_scale(const body::StandingHeights& heights,
-                             const std::vector<Eigen::VectorXd>& xs) {
-  return app::cell_frame_scale(heights.tallest_m(xs));
-}
-
-app::PairwiseDistance framed_body_distance(std::shared_ptr<const body::ShapeDistance> distance,
-                                           std::shared_ptr<const body::StandingHeights> heights) {
-  // The hook holds the distance itself, so a session copied into the redo stack stays valid
-  // after the space is replaced.
-  return [distance = std::move(distance),
-          heights = std::move(heights)](const std::vector<Eigen::VectorXd>& xs) {
-    return Eigen::MatrixXd(distance->pairwise_max_mm(xs) / body_grid_frame_scale(*heights, xs));
-  };
-}
-
 app::PairwiseDistance BodySpace::perceptual_distance() const {
-  return framed_body_distance(distance_, heights_);
+  return seen_body_distance(framed_);
 }
 
-double BodySpace::frame_scale(const std::vector<Eigen::VectorXd>& xs) const {
-  return body_grid_frame_scale(*heights_, xs);
+bool BodySpace::set_close_ups(bool on) {
+  // A new object: sessions in the redo stack keep the hook they were made with.
+  if (on != close_ups()) {
+    framed_ = std::make_shared<const FramedBodies>(
+        model_, on ? BodyFraming::kCloseUps : BodyFraming::kWholeBody);
+  }
+  return on;
+}
+
+app::GridFrame BodySpace::grid_frame(const std::vector<Eigen::VectorXd>& xs) const {
+  return framed_->grid_frame(xs);
 }
 
 app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
@@ -126,10 +119,12 @@ app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
 
 double BodySpace::min_plane_length(int cell_px) const {
   // A plane shorter than what a pixel-limited person sees shows look-alike cells however its
-  // first grid is widened (the benchmark's pixel person has the same rule): at 230 px, 19 mm.
-  return cell_px > 0 ? std::max(sps::SearchOptions{}.min_plane_length,
-                                app::look_alike_mm(cell_px, app::kDefaultJndPx))
-                     : 0.0;
+  // first grid is widened (the benchmark's pixel person has the same rule): at 230 px, 19 mm
+  // on the whole body, 11 mm in a typical close-up.
+  return cell_px > 0
+             ? std::max(sps::SearchOptions{}.min_plane_length,
+                        app::look_alike_mm(cell_px, app::kDefaultJndPx) * framed_->typical_scale())
+             : 0.0;
 }
 
 double BodySpace::choice_temperature(int cell_px) const {
@@ -137,7 +132,7 @@ double BodySpace::choice_temperature(int cell_px) const {
 }
 
 Eigen::VectorXd BodySpace::perceptual_scale() const {
-  return distance_->direction_rms_mm();
+  return framed_->distance().direction_rms_mm();
 }
 
 sps::Population body_population(int components) {
@@ -149,7 +144,7 @@ sps::Population body_population(int components) {
 }
 
 sps::Population BodySpace::population() const {
-  return body_population(distance_->dims());
+  return body_population(framed_->distance().dims());
 }
 
 BodySpace::~BodySpace() = default;

@@ -8,8 +8,7 @@
 
 #include "app/design_space.hpp"
 #include "body/body_model.hpp"
-#include "body/shape_distance.hpp"
-#include "body/standing_height.hpp"
+#include "spaces/body_framing.hpp"
 
 namespace render {
 class BodyRenderer;
@@ -20,17 +19,6 @@ namespace spaces {
 // The population of a body model's shape space in search coordinates (standardized shape
 // coefficients: N(0, 1) each), for sps::SearchOptions::population.
 sps::Population body_population(int components);
-
-// A grid of bodies is framed to its tallest one (app::cell_frame_scale): the scale for the
-// grid of these points.
-double body_grid_frame_scale(const body::StandingHeights& heights,
-                             const std::vector<Eigen::VectorXd>& xs);
-
-// The cells' largest vertex distances as a grid framed to its tallest body shows them, in mm
-// at the default framing (the body distance divided by the grid's frame scale): the window's
-// look-alike test and the benchmark's pixel person use it.
-app::PairwiseDistance framed_body_distance(std::shared_ptr<const body::ShapeDistance> distance,
-                                           std::shared_ptr<const body::StandingHeights> heights);
 
 class BodySpace : public app::DesignSpace,
                   public app::SpacePerception,
@@ -82,7 +70,9 @@ class BodySpace : public app::DesignSpace,
 
   // app::SpacePerception
   app::PairwiseDistance perceptual_distance() const override;
-  double frame_scale(const std::vector<Eigen::VectorXd>& xs) const override;
+  app::GridFrame grid_frame(const std::vector<Eigen::VectorXd>& xs) const override;
+  bool set_close_ups(bool on) override;
+  bool close_ups() const override { return framed_->framing() == BodyFraming::kCloseUps; }
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   double min_plane_length(int cell_px) const override;
   double choice_temperature(int cell_px) const override;
@@ -100,10 +90,10 @@ class BodySpace : public app::DesignSpace,
   // The same model for projectors and solves that may outlive this space (a session in the
   // redo stack); made on first use.
   mutable std::shared_ptr<const body::Model> shared_model_;
-  std::shared_ptr<const body::ShapeDistance> distance_;   // shared with the session's hook
-  std::shared_ptr<const body::StandingHeights> heights_;  // the same, for the grid's framing
-  std::shared_ptr<render::BodyRenderer> renderer_;        // made on the GL thread, shared by cells
-  std::vector<float> eye_tints_;                          // the cells' eye colours (body_scene.hpp)
+  // The grids' framing and distances as seen, shared with the session's hook.
+  std::shared_ptr<const FramedBodies> framed_;
+  std::shared_ptr<render::BodyRenderer> renderer_;  // made on the GL thread, shared by cells
+  std::vector<float> eye_tints_;                    // the cells' eye colours (body_scene.hpp)
   // What each component does to the body, measured the first time a label is asked for.
   struct ComponentEffect {
     std::string label, details;

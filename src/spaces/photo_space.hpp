@@ -42,7 +42,9 @@ class PhotoSpace : public app::DesignSpace, public app::SpacePerception {
   // in the slots where a body space gives millimetres.
   app::PairwiseDistance perceptual_distance() const override;
   // A picture fills its cell whatever the edit.
-  double frame_scale(const std::vector<Eigen::VectorXd>& /*xs*/) const override { return 1.0; }
+  app::GridFrame grid_frame(const std::vector<Eigen::VectorXd>& /*xs*/) const override {
+    return {};
+  }
   app::ZoomPolicy zoom_policy(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   double min_plane_length(int /*cell_px*/) const override { return kPhotoMinPlaneDeltaE; }

@@ -14,6 +14,8 @@
 #include <random>
 
 #include <catch2/catch.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/cell_visibility.hpp"
@@ -23,9 +25,11 @@
 #include "app/gallery_view.hpp"
 #include "app/session_store.hpp"
 #include "app/ui_prefs.hpp"
+#include "body/grid_framing.hpp"
 #include "body/shape_distance.hpp"
 #include "body/standing_height.hpp"
 #include "common/first_difference.hpp"
+#include "render/camera.hpp"
 #include "render/headless_context.hpp"
 #include "render/photo_renderer.hpp"
 #include "spaces/body_space.hpp"
@@ -750,6 +754,46 @@ struct InProcessWindow {
 
 }  // namespace
 
+TEST_CASE("the toolbar's rows as drawn head the side column; Close-ups toggles the framing",
+          "[gallery][gl]") {
+  TempDir dir;
+  for (const ImVec2 size : {ImVec2(1280, 720), ImVec2(800, 600), ImVec2(1920, 1080)}) {
+    CAPTURE(size.x, size.y);
+    // Each window in its own iteration: it owns the ImGui context.
+    InProcessWindow w(options(dir.path / "s.json", "body"), {}, size);
+    for (int i = 0; i < 3; ++i) w.frame(ImVec2(-1, -1), false);
+    const app::GalleryLayout& l = w.view->layout();
+    // Every toolbar widget lies in the toolbar's rect, above the message lines.
+    for (const char* name : {"toolbar:close-ups", "toolbar:model"}) {
+      CAPTURE(name);
+      const auto r = w.view->widget(name);
+      REQUIRE(r);
+      CHECK(r->y >= l.toolbar.y - 1.0f);
+      CHECK(r->y + r->h <= l.messages.y + 1.0f);
+      CHECK(r->x >= l.toolbar.x - 1.0f);
+    }
+  }
+  {
+    InProcessWindow w(options(dir.path / "s.json", "body"));
+    w.frame(ImVec2(-1, -1), false);
+    w.frame(ImVec2(-1, -1), false);
+    REQUIRE(w.c->space().close_ups());
+    REQUIRE(w.view->prefs().close_ups);
+    w.click("toolbar:close-ups");
+    CHECK_FALSE(w.c->space().close_ups());
+    CHECK_FALSE(w.view->prefs().close_ups);
+    w.click("toolbar:close-ups");
+    CHECK(w.c->space().close_ups());
+  }
+  // A window whose prefs say "whole" shows the first search whole (one window at a time: each
+  // owns the ImGui context).
+  app::UiPrefs whole;
+  whole.close_ups = false;
+  InProcessWindow v(options(dir.path / "t.json", "body"), whole);
+  for (int i = 0; i < 3; ++i) v.frame(ImVec2(-1, -1), false);
+  CHECK_FALSE(v.c->space().close_ups());
+}
+
 TEST_CASE("a double-click on a cell is one zoom step, hovering shows the cell", "[gallery][gl]") {
   TempDir dir;
   auto o = options(dir.path / "s.json", "body");
@@ -1432,6 +1476,12 @@ TEST_CASE("the grid takes the window's height, the toolbar heads the side column
   // A side column wide enough keeps the toolbar on one row; a narrow one wraps it.
   CHECK(app::compute_layout(2560, 1000, 3).toolbar_rows == 1);
   CHECK(app::toolbar_rows_for(300) == 3);
+  // The rows the view really drew take precedence over the estimate.
+  const app::GalleryLayout three = app::compute_layout(1280, 720, 3, 0, 3);
+  CHECK(three.toolbar_rows == 3);
+  CHECK(three.messages.y == Approx(three.toolbar.y + 3 * app::kToolbarRowHeight));
+  CHECK(three.cell == d.cell);
+  CHECK(app::compute_layout(1280, 720, 3, 0, 40).toolbar_rows == 6);
   // bench-gui's window for a given cell shows cells of that size.
   const auto [bw, bh] = app::window_size_for_cells(3, 300);
   CHECK(app::compute_layout(static_cast<float>(bw), static_cast<float>(bh), 3).cell >= 300);
@@ -1595,6 +1645,9 @@ TEST_CASE("why a plane ended early stays in the message that shows the next plan
   auto o = options(dir.path / "s.json", "body");
   o.zoom_levels = 8;  // deeper than the cells stay visibly different
   GalleryController c(o, &spaces::open_space, 0.0);
+  // Shown whole (close-ups keep the centre's cells apart for all 8 levels).
+  c.queue(intent::SetCloseUps{false});
+  c.begin_frame(0.0);
   double t = 0.0;
   int clicks = 0;
   while (c.session().planes_done() == 0 && !c.session().submission_pending() && clicks < 8) {
@@ -1748,8 +1801,9 @@ TEST_CASE("typed targets and the panel's units survive a relaunch", "[gallery][g
   CHECK(junk.typed_targets.count("hips") == 1);
 }
 
-TEST_CASE("a body grid is framed to its tallest body, and its cells compare as they look",
-          "[gallery][zoom]") {
+TEST_CASE(
+    "a body grid shown whole is framed to its tallest body, and its cells compare as they look",
+    "[gallery][zoom]") {
   // The rule: headroom above the tallest body, never wider than the default.
   CHECK(app::cell_frame_scale(1.70) == Approx((1.70 + app::kCellHeadroomM) / app::kCellFrameTopM));
   CHECK(app::cell_frame_scale(2.2) == 1.0);
@@ -1757,6 +1811,9 @@ TEST_CASE("a body grid is framed to its tallest body, and its cells compare as t
   CHECK(app::cell_frame_scale(std::nan("")) == 1.0);
   CHECK(app::cell_frame_scale(-1.0) == 1.0);
   const auto space = spaces::open_space({"body", "neutral", 10});
+  CHECK(space->close_ups());  // the window's default
+  CHECK_FALSE(space->set_close_ups(false));
+  CHECK_FALSE(space->close_ups());
   const app::SpacePerception* perception = space->perception();
   REQUIRE(perception != nullptr);
   const body::Model& model = dynamic_cast<const spaces::BodySpace&>(*space).model();
@@ -1766,7 +1823,8 @@ TEST_CASE("a body grid is framed to its tallest body, and its cells compare as t
   std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
   xs[1][0] = 0.4;
   xs[2][0] = 0.6;
-  const double scale = perception->frame_scale(xs);
+  CHECK(perception->grid_frame(xs).pivot_m == 0.0);  // the floor stays put
+  const double scale = perception->grid_frame(xs).scale;
   CHECK(scale == Approx(app::cell_frame_scale(heights.tallest_m(xs))));
   // A grid of people about 1.7 m tall is shown about 15 % larger than a 2 m one.
   CHECK(scale > 0.75);
@@ -1785,8 +1843,149 @@ TEST_CASE("a body grid is framed to its tallest body, and its cells compare as t
   std::vector<Eigen::VectorXd> tall = xs;
   tall.emplace_back(Eigen::VectorXd::Constant(10, 0.5));
   tall.back()[0] = 1.0;
-  CHECK(perception->frame_scale(tall) > scale);
-  CHECK(perception->frame_scale(tall) <= 1.0);
+  CHECK(perception->grid_frame(tall).scale > scale);
+  CHECK(perception->grid_frame(tall).scale <= 1.0);
+}
+
+TEST_CASE(
+    "a band of heights framed fills the cell: the camera shows it where the default "
+    "frame shows the whole body",
+    "[gallery][zoom]") {
+  // Project a point at height y on the body's plane with the framed camera, as the cells do.
+  const auto screen_y = [](const render::Camera& camera, double y) {
+    const glm::vec4 clip = camera.projection(1.0f) * camera.view() *
+                           glm::vec4(0.0f, static_cast<float>(y), 0.0f, 1.0f);
+    return static_cast<double>(clip.y / clip.w);
+  };
+  const render::Camera camera;
+  // The default frame's ends are the constants' (render_tests hold the top).
+  CHECK(screen_y(camera, app::kCellFrameTopM) == Approx(1.0).margin(0.01));
+  CHECK(screen_y(camera, app::kCellFrameBottomM) == Approx(-1.0).margin(0.01));
+  for (const auto& [bottom, top] :
+       {std::pair{0.55, 1.85}, std::pair{0.2, 1.3}, std::pair{-0.05, 1.0}}) {
+    CAPTURE(bottom, top);
+    const app::GridFrame frame = app::cell_frame_for_band(bottom, top);
+    CHECK(frame.scale == Approx((top - bottom) / (app::kCellFrameTopM - app::kCellFrameBottomM)));
+    const render::Camera framed = camera.scaled_about_height(static_cast<float>(frame.scale),
+                                                             static_cast<float>(frame.pivot_m));
+    CHECK(screen_y(framed, bottom) == Approx(-1.0).margin(0.02));
+    CHECK(screen_y(framed, top) == Approx(1.0).margin(0.02));
+  }
+  // The whole frame or more, nothing or junk: the default framing.
+  CHECK(app::cell_frame_for_band(-0.2, 2.1).scale == 1.0);
+  CHECK(app::cell_frame_for_band(1.0, 1.0).scale == 1.0);
+  CHECK(app::cell_frame_for_band(std::nan(""), 1.0).scale == 1.0);
+  CHECK(app::cell_frame_for_band(0.0, std::numeric_limits<double>::infinity()).scale == 1.0);
+  // Never closer than a quarter of the default frame.
+  CHECK(app::cell_frame_for_band(1.0, 1.01).scale == 0.25);
+}
+
+TEST_CASE("close-ups frame a grid on the band where its bodies differ and compare what is in view",
+          "[gallery][zoom]") {
+  const auto space = spaces::open_space({"body", "neutral", 10});
+  REQUIRE(space->close_ups());
+  const app::SpacePerception* perception = space->perception();
+  REQUIRE(perception != nullptr);
+  const body::Model& model = dynamic_cast<const spaces::BodySpace&>(*space).model();
+  const body::GridFraming bands(model);
+  const body::ShapeDistance raw(model);
+  const body::StandingHeights heights(model);
+  int close_ups = 0, whole = 0;
+  for (int k = 0; k < 10; ++k) {
+    CAPTURE(k);
+    // A zoomed-in grid along one component: the mean body and two 0.3 SD either side.
+    std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
+    xs[1][k] = 0.45;
+    xs[2][k] = 0.55;
+    const body::HeightBand band = bands.band(xs);
+    const app::GridFrame frame = perception->grid_frame(xs);
+    const double whole_scale = app::cell_frame_scale(heights.tallest_m(xs));
+    CHECK(frame.scale <= whole_scale + 1e-12);
+    // Every vertex that moves most across the grid is in the band (what the grid is about).
+    const Eigen::VectorXf a = body::vertex_norms(raw.displacement_mm(xs[1], xs[0]));
+    const Eigen::VectorXf b = body::vertex_norms(raw.displacement_mm(xs[2], xs[0]));
+    const Eigen::VectorXf moves = a.cwiseMax(b);
+    const std::vector<int> in_view = bands.vertices_in(xs, band);
+    std::vector<bool> shown(static_cast<std::size_t>(model.vertex_count()), false);
+    for (const int v : in_view) shown[static_cast<std::size_t>(v)] = true;
+    int missed = 0;
+    for (Eigen::Index v = 0; v < moves.size(); ++v) {
+      if (moves[v] >= 0.8f * moves.maxCoeff() && !shown[static_cast<std::size_t>(v)]) ++missed;
+    }
+    CHECK(missed == 0);
+    CHECK(band.height_m() >= body::BandRule{}.min_height_m - 1e-9);
+    if (frame.scale < 0.95 * whole_scale) {
+      ++close_ups;
+      // A close-up shows every head whole or none, and at least a trunk.
+      CHECK(frame.scale >= 0.3);
+      // Its look-alike distance is the largest distance in view, enlarged by the framing.
+      const Eigen::MatrixXd seen = perception->perceptual_distance()(xs);
+      const Eigen::MatrixXd in_band = raw.pairwise_max_mm(xs, in_view);
+      for (Eigen::Index i = 0; i < 3; ++i) {
+        for (Eigen::Index j = 0; j < 3; ++j) {
+          CHECK(seen(i, j) == Approx(in_band(i, j) / frame.scale).margin(1e-6));
+        }
+      }
+      CHECK(seen(1, 2) > raw.pairwise_max_mm(xs)(1, 2) / whole_scale);
+    } else {
+      ++whole;
+      CHECK(frame.pivot_m == 0.0);
+    }
+  }
+  // The trunk's components are shown close up, and something (the height) keeps the whole body.
+  CHECK(close_ups >= 3);
+  CHECK(whole >= 1);
+  // The same grid of one body, nothing to frame on: the whole body.
+  const std::vector<Eigen::VectorXd> same(3, Eigen::VectorXd::Constant(10, 0.5));
+  CHECK(perception->grid_frame(same).scale ==
+        Approx(app::cell_frame_scale(heights.tallest_m(same))));
+  // Shown whole again, the same grids compare over the whole body.
+  space->set_close_ups(false);
+  std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
+  xs[1][3] = 0.45;
+  xs[2][3] = 0.55;
+  CHECK(space->perception()->grid_frame(xs).scale ==
+        Approx(app::cell_frame_scale(heights.tallest_m(xs))));
+}
+
+TEST_CASE("the Close-ups choice reaches the session's look-alike test and is remembered",
+          "[gallery][zoom]") {
+  TempDir dir;
+  GalleryController c(options(dir.path / "s.json", "body"), &spaces::open_space, 0.0);
+  c.queue(intent::SetCellPixels{app::kDefaultCellPx});
+  c.begin_frame(1.0);
+  REQUIRE(c.space().close_ups());
+  // A zoomed-in grid along a trunk component looks more different in a close-up.
+  std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
+  int k = 0;
+  for (; k < 10; ++k) {
+    xs = std::vector<Eigen::VectorXd>(3, Eigen::VectorXd::Constant(10, 0.5));
+    xs[1][k] = 0.45;
+    xs[2][k] = 0.55;
+    if (c.space().perception()->grid_frame(xs).scale < 0.8) break;
+  }
+  REQUIRE(k < 10);
+  const double close = c.session().perceptual_distance()(xs)(1, 2);
+  c.queue(intent::SetCloseUps{false});
+  c.begin_frame(2.0);
+  CHECK_FALSE(c.space().close_ups());
+  const double whole = c.session().perceptual_distance()(xs)(1, 2);
+  CHECK(whole < close);
+  // The planes' smallest side follows what the framing shows.
+  const double whole_plane = c.session().search().options().min_plane_length;
+  c.queue(intent::SetCloseUps{true});
+  c.begin_frame(3.0);
+  CHECK(c.session().perceptual_distance()(xs)(1, 2) == Approx(close));
+  CHECK(c.session().search().options().min_plane_length <= whole_plane);
+  // ui.json keeps the choice.
+  app::UiPrefs prefs;
+  prefs.close_ups = false;
+  const auto path = dir.path / "ui.json";
+  REQUIRE(app::save_ui_prefs(prefs, path));
+  CHECK_FALSE(app::load_ui_prefs(path).close_ups);
+  prefs.close_ups = true;
+  REQUIRE(app::save_ui_prefs(prefs, path));
+  CHECK(app::load_ui_prefs(path).close_ups);
 }
 
 TEST_CASE("the look-alike threshold follows the cells' size on screen", "[gallery][zoom]") {
@@ -1800,8 +1999,11 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   const double at_default = c.session().zoom_policy().distinct_mm;
   CHECK(at_default == Approx(app::look_alike_mm(app::kDefaultCellPx)));
   CHECK(at_default == Approx(18.6).margin(0.2));
-  // The planes to come are at least that long, as the benchmark's pixel person has them.
-  CHECK(c.session().search().options().min_plane_length == Approx(at_default));
+  // The planes to come are at least that long as a typical close-up shows them, as the
+  // benchmark's pixel person has them (and never shorter than the optimizer's default).
+  CHECK(c.session().search().options().min_plane_length ==
+        Approx(std::max(sps::SearchOptions{}.min_plane_length,
+                        at_default * spaces::typical_frame_scale(spaces::BodyFraming::kCloseUps))));
   // And the estimate of the body in mind takes the choices as about as noisy as a third of it.
   CHECK(c.session().search().options().choice_temperature_mm ==
         Approx(app::choice_temperature_for_cells(app::kDefaultCellPx)));

@@ -63,3 +63,31 @@ TEST_CASE("shape distance: pairwise largest vertex distances", "[shape-distance]
   CHECK(m(2, 2) == 0.0);
   CHECK_THROWS_AS(body::ShapeDistance(body::Model{}), std::invalid_argument);
 }
+
+TEST_CASE("shape distance: over some vertices only (a cell framed on part of the body)",
+          "[shape-distance]") {
+  const body::ShapeDistance d(three_vertex_model());
+  // Vertex 1 moves 60 mm with x0 + 0.01, vertex 2 30 mm with x1 + 0.01.
+  const std::vector<Eigen::VectorXd> xs{Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(0.51, 0.5),
+                                        Eigen::Vector2d(0.5, 0.51)};
+  const Eigen::MatrixXd all = d.pairwise_max_mm(xs);
+  const Eigen::MatrixXd only_2 = d.pairwise_max_mm(xs, {2});
+  const Eigen::MatrixXd none = d.pairwise_max_mm(xs, {});
+  CHECK(all(0, 1) == Approx(60.0).epsilon(1e-5));
+  CHECK(only_2(0, 1) == Approx(0.0).margin(1e-6));  // vertex 1 is out of view
+  CHECK(only_2(0, 2) == Approx(30.0).epsilon(1e-5));
+  CHECK(only_2(1, 2) == Approx(30.0).epsilon(1e-5));
+  CHECK(only_2(2, 1) == only_2(1, 2));
+  CHECK(none.cwiseAbs().maxCoeff() == 0.0);
+  const Eigen::MatrixXd both = d.pairwise_max_mm(xs, {1, 2});
+  CHECK((both - all).cwiseAbs().maxCoeff() < 1e-6);
+  // To a target: the target at betas (0, 0) is x = (0.5, 0.5).
+  const auto to_target = d.max_to_betas_mm(xs, Eigen::Vector2f(0.0f, 0.0f), {2});
+  REQUIRE(to_target.size() == 3u);
+  CHECK(to_target[0] == Approx(0.0).margin(1e-6));
+  CHECK(to_target[1] == Approx(0.0).margin(1e-6));
+  CHECK(to_target[2] == Approx(30.0).epsilon(1e-5));
+  // A vertex the model does not have is an error, not a read past the end.
+  CHECK_THROWS_AS(d.pairwise_max_mm(xs, {3}), std::invalid_argument);
+  CHECK_THROWS_AS(d.max_to_betas_mm(xs, Eigen::Vector2f(0.0f, 0.0f), {-1}), std::invalid_argument);
+}

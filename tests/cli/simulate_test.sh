@@ -100,8 +100,17 @@ done
 # look-alike count alike.
 out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --quiet \
       --jnd-px 2 --cell-px 210)
-grep -qE "JND 20\.4[0-9]* mm = 2 px in a 210 px cell; look-alikes under 20\.4" <<<"$out" ||
+grep -qE "JND 20\.4[0-9]* mm = 2 px in a 210 px cell, close-ups; look-alikes under 20\.4" <<<"$out" ||
   fail "pixel person title: $out"
+# The whole-body framing on request; anything else is refused with the choices named.
+out=$("$bin" simulate --function body --components 4 --trials 1 --iterations 2 --quiet \
+      --jnd-px 2 --cell-px 210 --framing whole-body)
+grep -q "210 px cell, whole-body;" <<<"$out" || fail "whole-body framing title: $out"
+if err=$("$bin" simulate --function body --components 4 --trials 1 --iterations 1 --quiet \
+      --jnd-px 2 --framing sideways 2>&1); then
+  fail "--framing sideways was accepted"
+fi
+grep -q "close-ups or whole-body" <<<"$err" || fail "--framing sideways: $err"
 
 # The photo benchmark: the window's 3x3 grids kept 3.5 Delta E apart, a 2.3-JND person, the
 # body benchmark's columns; a named task is one fixed edit for every trial.
