@@ -29,9 +29,10 @@ if [[ "${FIT_REPORT_ONLY:-0}" != 1 ]]; then
       csv=$FEMALE
       [[ $sex == M ]] && csv=$MALE
       for k in 10 all; do
+        # The table without the command's "wrote FILE" line (a path of this machine's).
         "$APP" fit-survey --model "$model" --csv "$csv" --sample "$SAMPLE" --seed 1 \
-          --components "$k" --out "$OUT/fit_${model}_${sex}_${k}.csv" \
-          >"$OUT/fit_${model}_${sex}_${k}.txt"
+          --components "$k" --out "$OUT/fit_${model}_${sex}_${k}.csv" |
+          grep -v '^wrote ' >"$OUT/fit_${model}_${sex}_${k}.txt"
       done
     done
   done

@@ -118,18 +118,24 @@ std::vector<double> ShapeDistance::max_to_betas_mm(const std::vector<Eigen::Vect
   return out;
 }
 
+Eigen::MatrixXf ShapeDistance::displacements_from_first(
+    const std::vector<Eigen::VectorXd>& xs) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(xs.size());
+  Eigen::MatrixXf diffs(dims(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    check_size(xs[static_cast<std::size_t>(i)], dims());
+    diffs.col(i) = (xs[static_cast<std::size_t>(i)] - xs.front()).cast<float>();
+  }
+  return unit_dirs_mm_ * diffs;
+}
+
 Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd>& xs,
                                                const std::vector<int>& vertices) const {
   check_vertices(vertices, vertex_count());
   const Eigen::Index n = static_cast<Eigen::Index>(xs.size());
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   if (n == 0) return out;
-  Eigen::MatrixXf diffs(dims(), n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    check_size(xs[static_cast<std::size_t>(i)], dims());
-    diffs.col(i) = (xs[static_cast<std::size_t>(i)] - xs.front()).cast<float>();
-  }
-  const Eigen::MatrixXf disp = unit_dirs_mm_ * diffs;  // 3V x n, relative to the first body
+  const Eigen::MatrixXf disp = displacements_from_first(xs);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (Eigen::Index j = i + 1; j < n; ++j) {
       float largest = 0.0f;
@@ -148,12 +154,7 @@ Eigen::MatrixXd ShapeDistance::pairwise_max_mm(const std::vector<Eigen::VectorXd
   const Eigen::Index n = static_cast<Eigen::Index>(xs.size());
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(n, n);
   if (n == 0) return out;
-  Eigen::MatrixXf diffs(dims(), n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    check_size(xs[static_cast<std::size_t>(i)], dims());
-    diffs.col(i) = (xs[static_cast<std::size_t>(i)] - xs.front()).cast<float>();
-  }
-  const Eigen::MatrixXf disp = unit_dirs_mm_ * diffs;  // 3V x n, relative to the first body
+  const Eigen::MatrixXf disp = displacements_from_first(xs);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (Eigen::Index j = i + 1; j < n; ++j) {
       const double d = static_cast<double>(vertex_norms(disp.col(i) - disp.col(j)).maxCoeff());

@@ -60,6 +60,8 @@ class ShapeDistance {
                                   double (ShapeDistance::*distance)(const Eigen::VectorXd&,
                                                                     const Eigen::VectorXd&)
                                       const) const;
+  // 3V x n: each body's vertices less the first body's (mm).
+  Eigen::MatrixXf displacements_from_first(const std::vector<Eigen::VectorXd>& xs) const;
   Eigen::MatrixXf unit_dirs_mm_;  // 3V x K: d vertices / d x, mm (6000 * shapedirs)
 };
 

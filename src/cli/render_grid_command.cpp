@@ -22,12 +22,15 @@ const char* const kUsage =
     "usage: sequential-gallery render-grid [--space body|photo] [--model FILE.npz|--image FILE]\n"
     "                                      [--grid 3|5] [--seed S] [--components K]\n"
     "                                      [--cell PX] [--samples N]\n"
+    "                                      [--framing close-ups|whole-body]\n"
     "                                      [--target NAME=VALUE ...] [--hold NAME[=VALUE] ...]\n"
     "                                      [--cells-dir DIR] [--cells-csv FILE] -o GRID.png\n"
     "Renders the grid of the first plane of a new search (seed S) as the window draws it.\n"
     "Bodies: --target (e.g. height=1.80 mass=85) starts the search at the nearest body that\n"
     "meets it (the first plane is then the one proposed from there); --hold keeps a\n"
     "measurement fixed in every cell (a bare name holds the start body's value).\n"
+    "--framing: bodies framed on where the grid's cells differ (close-ups, the window's\n"
+    "default) or whole.\n"
     "--cells-dir also writes each cell as DIR/cell_<row>_<col>.png; --cells-csv writes each\n"
     "cell's x (and, for bodies, its measurements in metres).\n";
 
@@ -38,7 +41,12 @@ int run(int argc, char** argv) {
     return 0;
   }
   args.reject_unknown({"help", "space", "model", "image", "grid", "seed", "components", "cell",
-                       "samples", "cells-dir", "cells-csv", "o", "output", "target", "hold"});
+                       "samples", "cells-dir", "cells-csv", "o", "output", "target", "hold",
+                       "framing"});
+  const std::string framing = args.get_or("framing", "close-ups");
+  if (framing != "close-ups" && framing != "whole-body") {
+    throw cli::ArgError("render-grid: --framing is close-ups or whole-body, not '" + framing + "'");
+  }
   const auto out = args.get("o") ? args.get("o") : args.get("output");
   if (!out) throw cli::ArgError("render-grid: -o GRID.png is required\n" + std::string(kUsage));
   for (const char* option : {"o", "output", "cells-dir", "cells-csv"}) {
@@ -69,6 +77,7 @@ int run(int argc, char** argv) {
 
   render::HeadlessContext context;
   auto space = spaces::open_space(space_settings);
+  space->set_close_ups(framing == "close-ups");
   app::SessionSettings settings;
   settings.space = space_settings.kind;
   settings.model_path = space_settings.source;

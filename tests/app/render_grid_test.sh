@@ -36,6 +36,18 @@ PYEOF
 }
 check body 3
 check photo 3
+# The whole bodies on request: the same cells framed wider (the close-ups are the default).
+"$APP" render-grid --space body --cell 96 --framing whole-body --cells-dir "$T/whole" \
+  -o "$T/whole.png"
+convert "$T/whole/cell_1_1.png" -depth 8 rgb:"$T/whole.rgb"
+/usr/bin/python3 - "$T/body/cell_1_1.rgb" "$T/whole.rgb" <<'PYEOF'
+import sys
+import numpy as np
+close, whole = (np.fromfile(f, dtype=np.uint8).astype(np.int32) for f in sys.argv[1:3])
+diff = np.abs(close - whole).mean()
+print(f"centre cell, close-up against whole body: mean difference {diff:.2f}")
+assert diff > 2.0, "--framing whole-body drew the close-up"
+PYEOF
 # The kinds and their source options come from the catalogue; a wrong pair says which is which.
 refused() {  # refused EXPECTED ARGS...
   local expected=$1; shift
@@ -47,4 +59,5 @@ refused() {  # refused EXPECTED ARGS...
 refused "--space must be body or photo" --space sound
 refused "--model is for --space body; a photo search takes --image" --space photo --model male
 refused "--image is for --space photo; a body search takes --model" --image "$T/x.png"
+refused "--framing is close-ups or whole-body" --framing sideways
 echo PASS
