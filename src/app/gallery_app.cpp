@@ -448,6 +448,7 @@ ControllerOptions controller_options(const GalleryOptions& o, const UiPrefs& pre
   ControllerOptions c = controller_options(o);
   const SpaceKind& kind = o.catalogue->get(c.space.kind);
   if (!o.source && kind.remembered_source) c.space.source = kind.remembered_source(prefs.sources);
+  c.close_ups = prefs.close_ups;
   return c;
 }
 

@@ -274,6 +274,7 @@ void GalleryController::apply(const Intent& i) {
             follow_cells();
           },
           [&](const intent::SetCloseUps& f) {
+            options_.close_ups = f.on;  // and for every search opened after this one
             if (space_->close_ups() == f.on) return;
             space_->set_close_ups(f.on);
             // The session's distance is the grids' as framed: install the new one.
@@ -581,6 +582,8 @@ void GalleryController::follow_cells() {
 }
 
 void GalleryController::install_perception() {
+  // Before the distance below is taken: it compares the grids as they will be framed.
+  space_->set_close_ups(options_.close_ups);
   const SpacePerception* perception = space_->perception();
   if (perception == nullptr) return;  // the paper's fixed zoom
   // A session restored from a file keeps the scale it was saved with (its planes were built

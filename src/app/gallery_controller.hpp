@@ -48,6 +48,9 @@ struct ControllerOptions {
   // testing: false leaves the space's perceptual distance out (the paper's fixed zoom, so a
   // plane always takes zoom_levels clicks), for tests of what clicks do to a session.
   bool perceptual_zoom = true;
+  // Body grids framed on where their cells differ (View: Close-ups, remembered in ui.json):
+  // set on every space the controller opens, before its first grid is framed.
+  bool close_ups = true;
   bool log = true;  // messages also go to stdout / stderr
   // Each message also as one "[message] error|success|info TEXT" line on stdout, so that
   // scripted window tests read what the window shows by its kind, not by a log's wording.

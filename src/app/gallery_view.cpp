@@ -74,8 +74,6 @@ void GalleryView::sync_space(GalleryController& c) {
   framed_points_.clear();  // another space frames the same points differently
   sliders_.space_opened();
   space_generation_ = c.space_generation();
-  // A space opens with close-ups; the window's choice holds for every search.
-  if (c.space().close_ups() != prefs_.close_ups) c.queue(intent::SetCloseUps{prefs_.close_ups});
   new_search_.space_opened(c, prefs_);
   save_.space_opened(c.space(), prefs_);
 }
@@ -315,7 +313,8 @@ void GalleryView::draw_toolbar(GalleryController& c) {
       if (ImGui::RadioButton(labels[i], active_preset_ == i)) set_preset(i);
     }
     ImGui::SameLine();
-    bool close_ups = prefs_.close_ups;
+    // What the grid shows (the controller applies the remembered choice to every space).
+    bool close_ups = c.options().close_ups;
     if (ImGui::Checkbox("Close-ups", &close_ups)) {
       prefs_.close_ups = close_ups;
       c.queue(intent::SetCloseUps{close_ups});

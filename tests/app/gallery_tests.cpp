@@ -785,12 +785,24 @@ TEST_CASE("the toolbar's rows as drawn head the side column; Close-ups toggles t
     w.click("toolbar:close-ups");
     CHECK(w.c->space().close_ups());
   }
-  // A window whose prefs say "whole" shows the first search whole (one window at a time: each
-  // owns the ImGui context).
+  // A window whose prefs say "whole" shows its first grid whole, and every new search (one
+  // window at a time: each owns the ImGui context). The prefs reach the controller as the
+  // window passes them.
   app::UiPrefs whole;
   whole.close_ups = false;
-  InProcessWindow v(options(dir.path / "t.json", "body"), whole);
-  for (int i = 0; i < 3; ++i) v.frame(ImVec2(-1, -1), false);
+  app::GalleryOptions launch;
+  launch.catalogue = &spaces::catalogue();
+  launch.space = "body";
+  launch.session_path = dir.path / "t.json";
+  launch.resume = app::ResumePolicy::kNo;
+  app::ControllerOptions o = app::controller_options(launch, whole);
+  o.log = false;
+  InProcessWindow v(o, whole);
+  CHECK_FALSE(v.c->space().close_ups());  // before the first frame is drawn
+  v.frame(ImVec2(-1, -1), false);
+  CHECK_FALSE(v.c->space().close_ups());
+  v.c->queue(intent::StartNew{});
+  for (int i = 0; i < 2; ++i) v.frame(ImVec2(-1, -1), false);
   CHECK_FALSE(v.c->space().close_ups());
 }
 
