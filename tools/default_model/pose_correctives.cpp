@@ -186,14 +186,148 @@ double rotation_share_strength(int joint) {
   return 1.0;
 }
 
+// Flesh in contact at a deeply bent hinge (elbow, knee). The posed template is a blended union
+// of primitives, so where the calf presses into the back of the thigh, or the forearm into the
+// biceps, both limbs' skins lie inside the other limb and the union has no surface there for
+// them: they crossed each other (hundreds of intersecting triangle pairs at 130 degrees in the
+// pose benchmark), and projecting onto the union jumped between the limbs and crumpled the
+// skin. Flesh pressed together meets on a common surface; here that is the plane bisecting the
+// two segments (it holds the hinge's axis), each limb kept on its own side of it.
+struct HingeContact {
+  Vec3 centre = Vec3::Zero();
+  Vec3 up = Vec3::Zero(), down = Vec3::Zero();  // rest directions to the parent and child joints
+  double reach = 0;  // rest distance from the joint within which flesh can meet
+  // Pressed flesh ends within 2 gaps of the plane (a vertex on it 1 gap from it).
+  static constexpr double kGap = 0.006;
+
+  HingeContact(const SmplxRig& rig, int joint, int parent, int child)
+      : centre(rig.joints[joint]),
+        up((rig.joints[parent] - centre).normalized()),
+        down((rig.joints[child] - centre).normalized()),
+        reach(0.8 * std::min((rig.joints[parent] - centre).norm(),
+                             (rig.joints[child] - centre).norm())) {}
+
+  // `rest`: the vertex at rest; `skinned`: where linear blending puts it; `posed`: where the
+  // posed template puts it; R the hinge's turn. Where flesh meets, the skinned vertex is
+  // pressed instead of the template's, fading in as it nears the plane and from the side of
+  // the bend onto its inside.
+  // `pressed_by` (if given) receives how far the vertex was pressed (0 where it was not).
+  Vec3 apply(const Vec3& rest, const Vec3& skinned, const Vec3& posed, const Eigen::Matrix3d& R,
+             double* pressed_by = nullptr) const {
+    if (pressed_by) *pressed_by = 0.0;
+    const Vec3 w = R * down;
+    const Vec3 inner = up + w;  // into the bend, between the two segments
+    if (inner.norm() < 0.1 || (rest - centre).norm() > reach) return posed;
+    const Vec3 n = (w - up).normalized();  // the bisecting plane's normal, to the child
+    // Which limb the vertex belongs to is the side of the joint's plane it lies on at rest (the
+    // crease's vertices on the plane fade out within 3 mm of it).
+    const double along = (rest - centre).dot((down - up).normalized());
+    const double limb = std::clamp(std::abs(along) / 0.003, 0.0, 1.0);
+    // Only on the bend's inside: the kneecap's and the elbow's outer skin are never pressed.
+    const double inside = std::clamp((skinned - centre).dot(inner.normalized()) / 0.02, 0.0, 1.0);
+    const double side = along < 0.0 ? -1.0 : 1.0;
+    // The distance from the plane on the limb's own side, compressed smoothly below 2 gaps
+    // into (0, 2 gaps]: a one-to-one map (hyperbolic below, identity above, C1 where they
+    // meet), so flesh that went through the other limb is laid in layers on its own side, in
+    // its order. Clamping it onto the plane laid its triangles on top of each other; an
+    // exponential laid 3 cm of depth within microns, where flat triangles crossed.
+    const double h = side * (skinned - centre).dot(n);
+    const double top = 2.0 * kGap;
+    // Flesh well clear of the other limb keeps the template's shape.
+    const double near = std::clamp((3.0 * top - h) / top, 0.0, 1.0);
+    // Faded out over the last quarter of the reach, where the correctives end: a cut there left
+    // a step across the back of the thigh.
+    const double within = std::clamp((reach - (rest - centre).norm()) / (reach / 4.0), 0.0, 1.0);
+    const double t = limb * inside * near * within;
+    if (t <= 0.0) return posed;
+    const double depth = h >= top ? 0.0 : top * top / (2.0 * top - h) - h;
+    if (pressed_by) *pressed_by = t * depth;
+    return (1.0 - t) * posed + t * (skinned + depth * side * n);
+  }
+
+  // Pressed flesh is not lost: muscle and fat keep their volume and bulge round the contact.
+  // Each limb is cut into rings across its axis (2 cm, blended linearly between neighbours);
+  // what a ring's pressed vertices gave up (the sum of their depths) its unpressed vertices
+  // take back, pushed out from the axis by the same amount shared among them (at most 2 cm).
+  // `offsets` are the posed offsets of the vertices `rest`, `pressed` their pressed depths.
+  void bulge(const std::vector<Vec3>& rest, const std::vector<double>& pressed,
+             const Eigen::Matrix3d& R, std::vector<Vec3>& offsets) const {
+    constexpr double kRing = 0.02, kMost = 0.02;
+    const int rings = static_cast<int>(reach / kRing) + 2;
+    const Vec3 normal = (down - up).normalized();
+    std::vector<double> given(2 * rings, 0.0), takers(2 * rings, 0.0);
+    const auto place = [&](const Vec3& p, int* side, int* ring, double* frac) {
+      const double along = (p - centre).dot(normal);
+      const Vec3& axis = along < 0.0 ? up : down;
+      const double a = std::max(0.0, (p - centre).dot(axis)) / kRing;
+      *side = along < 0.0 ? 0 : 1;
+      *ring = std::min(static_cast<int>(a), rings - 2);
+      *frac = std::clamp(a - *ring, 0.0, 1.0);
+    };
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      if ((rest[i] - centre).norm() > reach) continue;
+      int side = 0, ring = 0;
+      double frac = 0.0;
+      place(rest[i], &side, &ring, &frac);
+      std::vector<double>& to = pressed[i] > 0.0 ? given : takers;
+      const double amount = pressed[i] > 0.0 ? pressed[i] : 1.0;
+      to[side * rings + ring] += (1.0 - frac) * amount;
+      to[side * rings + ring + 1] += frac * amount;
+    }
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      if (pressed[i] > 0.0 || (rest[i] - centre).norm() > reach) continue;
+      int side = 0, ring = 0;
+      double frac = 0.0;
+      place(rest[i], &side, &ring, &frac);
+      const auto share_of = [&](int k) {
+        return takers[k] > 0.0 ? std::min(kMost, given[k] / takers[k]) : 0.0;
+      };
+      // Faded out over the last third of the reach, where the correctives end.
+      const double fade = std::clamp((reach - (rest[i] - centre).norm()) / (reach / 3.0), 0.0, 1.0);
+      const double out = fade * ((1.0 - frac) * share_of(side * rings + ring) +
+                                 frac * share_of(side * rings + ring + 1));
+      if (out <= 0.0) continue;
+      const Vec3& axis = side == 0 ? up : down;
+      Vec3 radial = (rest[i] - centre) - (rest[i] - centre).dot(axis) * axis;
+      if (radial.norm() < 1e-6) continue;
+      radial.normalize();
+      offsets[i] += out * (side == 0 ? radial : Vec3(R * radial));
+    }
+  }
+};
+
+bool is_hinge(int joint) {
+  return joint == kLeftElbow || joint == kRightElbow || joint == kLeftKnee || joint == kRightKnee;
+}
+
+// A body other than the template on which the hinges' contact is found (a model's mean body,
+// whose limbs are thicker than the template's), with the rig's joints at its own joints.
+struct ContactBody {
+  const std::vector<Vec3>* rest = nullptr;
+  const SmplxRig* rig = nullptr;
+};
+
 // The fit of one joint's columns on the rest body P (with the rig's joints at that body's
 // joints). The template kind needs the mannequin whose primitives it poses.
 JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen::VectorXd& share,
-                   int joint, PosedTarget kind, const Mannequin* mannequin) {
+                   const Eigen::MatrixXd& weights, int joint, PosedTarget kind,
+                   const Mannequin* mannequin, const ContactBody& other) {
   const int V = static_cast<int>(P.size());
   JointFit fit;
-  for (int v = 0; v < V; ++v)
-    if (share[v] > 0.005 && share[v] < 0.995) fit.zone.push_back(v);
+  // The hinges' flesh meets beyond their blend zones: the two segments near the joint take
+  // correctives too (the parent segment's skin is weighted to the parent joint).
+  const bool hinge = kind == PosedTarget::kTemplate && is_hinge(joint);
+  const int parent = rig.parents[joint];
+  const int child = joint == kLeftKnee || joint == kRightKnee ? joint + 3 : joint + 2;
+  const std::vector<Vec3>& C = other.rest ? *other.rest : P;
+  const SmplxRig& contact_rig = other.rig ? *other.rig : rig;
+  const HingeContact contact(contact_rig, joint, parent, child);
+  for (int v = 0; v < V; ++v) {
+    const bool blend = share[v] > 0.005 && share[v] < 0.995;
+    const bool near_limb = hinge && (C[v] - contact.centre).norm() < contact.reach &&
+                           (share[v] >= 0.995 || weights(v, parent) > 0.5);
+    if (blend || near_limb) fit.zone.push_back(v);
+  }
   const std::vector<Eigen::Matrix3d> rotations = joint_rotations(joint, rig);
   const int S = static_cast<int>(rotations.size()), n = static_cast<int>(fit.zone.size());
   if (n == 0 || S == 0) return fit;
@@ -208,22 +342,35 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
     const JointPose pose =
         kind == PosedTarget::kTemplate ? joint_pose(joint, R, mannequin->skeleton()) : JointPose{};
     const Eigen::AngleAxisd turn_of(R);
+    std::vector<Vec3> offsets(n, Vec3::Zero()), zone_rest(n);
+    std::vector<double> pressed(n, 0.0);
     for (int i = 0; i < n; ++i) {
       const int v = fit.zone[i];
       const Vec3 skinned = (1.0 - share[v]) * P[v] + share[v] * (c + R * (P[v] - c));
-      Vec3 r;
+      Vec3& r = offsets[i];
       if (kind == PosedTarget::kTemplate) {
         r = mannequin->project(skinned, 8, &pose) - skinned;
         // Farther than 3 cm the projection found another part of the body (the forearm
         // pressed into the biceps): nothing to learn there.
         if (r.norm() > 0.03) r.setZero();
+        if (hinge) {
+          // Contact on the contact body, the template's offsets elsewhere.
+          const Vec3& cc = contact.centre;
+          const Vec3 at = (1.0 - share[v]) * C[v] + share[v] * (cc + R * (C[v] - cc));
+          r = contact.apply(C[v], at, at + r, R, &pressed[i]) - at;
+          zone_rest[i] = C[v];
+        }
       } else {
         const Eigen::AngleAxisd part(share[v] * turn_of.angle(), turn_of.axis());
         r = strength * (c + part.toRotationMatrix() * (P[v] - c) - skinned);
       }
+    }
+    if (hinge) contact.bulge(zone_rest, pressed, R, offsets);
+    for (int i = 0; i < n; ++i) {
+      const int v = fit.zone[i];
       const Eigen::Matrix3d M = (1.0 - share[v]) * Eigen::Matrix3d::Identity() + share[v] * R;
-      targets[i].col(s) = M.inverse() * r;
-      fit.skinning_error += r.norm();
+      targets[i].col(s) = M.inverse() * offsets[i];
+      fit.skinning_error += offsets[i].norm();
     }
   }
   // Ridge regression of each vertex's offsets on the nine features (one normal matrix).
@@ -260,7 +407,8 @@ double quantised(double c) {
 PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind,
                                 const std::vector<Vec3>& P, const SmplxRig& rig,
                                 const Eigen::MatrixXd& weights, int threads,
-                                const Mannequin* mannequin, Eigen::MatrixXf& posedirs) {
+                                const Mannequin* mannequin, Eigen::MatrixXf& posedirs,
+                                const ContactBody& other = {}) {
   const int V = static_cast<int>(P.size());
   const int J = rig.size();
   std::vector<std::vector<char>> in_subtree(J, std::vector<char>(J, 0));
@@ -275,7 +423,7 @@ PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind
         Eigen::VectorXd share = Eigen::VectorXd::Zero(V);
         for (int k = 0; k < J; ++k)
           if (in_subtree[joints[i]][k]) share += weights.col(k);
-        fits[i] = fit_joint(P, rig, share, joints[i], kind, mannequin);
+        fits[i] = fit_joint(P, rig, share, weights, joints[i], kind, mannequin, other);
       }
     });
   for (auto& th : pool) th.join();
@@ -313,6 +461,17 @@ Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& 
                  &mannequin, posedirs);
   if (report) *report = limbs;
   return posedirs;
+}
+
+void fit_hinge_contact_correctives(const Mannequin& mannequin, const TriMesh& mesh,
+                                   const SmplxRig& rig, const Eigen::MatrixXd& weights,
+                                   const std::vector<Vec3>& rest, const SmplxRig& rest_rig,
+                                   int threads, Eigen::MatrixXf& posedirs) {
+  std::vector<int> hinges;
+  for (int j : template_joints())
+    if (is_hinge(j)) hinges.push_back(j);
+  fit_joints(hinges, PosedTarget::kTemplate, mesh.vertices, rig, weights, threads, &mannequin,
+             posedirs, ContactBody{&rest, &rest_rig});
 }
 
 void fit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,

@@ -36,6 +36,15 @@ Eigen::MatrixXf fit_pose_correctives(const Mannequin& mannequin, const TriMesh& 
                                      const SmplxRig& rig, const Eigen::MatrixXd& weights,
                                      int threads, PoseCorrectiveReport* report = nullptr);
 
+// Re-fits the elbows' and knees' columns as fit_pose_correctives does, with the flesh that
+// meets in a deep bend found on `rest` (a model's mean body of the template's topology, with
+// `rest_rig`'s joints at its joints) instead of the template: a model's limbs are thicker than
+// the template's, and pressed by the template's offsets they still went through each other.
+void fit_hinge_contact_correctives(const Mannequin& mannequin, const TriMesh& mesh,
+                                   const SmplxRig& rig, const Eigen::MatrixXd& weights,
+                                   const std::vector<Vec3>& rest, const SmplxRig& rest_rig,
+                                   int threads, Eigen::MatrixXf& posedirs);
+
 // Fits the shoulders', hips', head's and finger joints' columns of `posedirs` on a rest body of
 // the template's topology (a model's mean body, with `rig`'s joints at that body's joints): each
 // blend-zone vertex turned by its share of the rotation. Their offsets are a share of each vertex's

@@ -1,5 +1,7 @@
 #include "smplx_rig.hpp"
 
+#include <array>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -117,17 +119,38 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
   std::vector<Source> sources;
   for (int j = 0; j < J; ++j)
     for (const Segment& s : rig.segments[j]) sources.push_back({j, &s});
+  // Past the thigh's end at the knee and the upper arm's at the elbow, distances are compared in
+  // the radius of the segment that begins there (the shin's, the forearm's). In the thick
+  // thigh's own radius its end reached 6-7 cm down the back of the calf, and the knee's blend
+  // zone with it (the calf 10 cm below the knee still moved 20 % with the thigh), so that the
+  // calf and thigh crossed each other when the knee bent. The other joints keep theirs (their
+  // correctives are tuned to them).
+  std::vector<std::array<double, 2>> end_radius(sources.size());
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const Segment& seg = *sources[i].segment;
+    end_radius[i] = {seg.radius, seg.radius};
+    const int j = sources[i].joint;
+    const bool hinge_parent =
+        j == kLeftHip || j == kRightHip || j == kLeftShoulder || j == kRightShoulder;
+    if (!hinge_parent) continue;
+    const int hinge = j == kLeftHip || j == kRightHip ? j + 3 : j + 2;  // the knee, the elbow
+    for (const Segment& next : rig.segments[hinge])
+      if ((next.a - seg.b).norm() < 1e-3) end_radius[i][1] = std::min(seg.radius, next.radius);
+  }
   Eigen::VectorXd heat = Eigen::VectorXd::Zero(V);
   std::vector<int> nearest(V, -1);
   int blind = 0;
   for (int v = 0; v < V; ++v) {
     std::vector<std::pair<double, int>> order;
     std::vector<Vec3> closest(sources.size());
-    for (std::size_t i = 0; i < sources.size(); ++i)
-      order.push_back(
-          {segment_distance(P[v], sources[i].segment->a, sources[i].segment->b, &closest[i]) /
-               sources[i].segment->radius,
-           int(i)});
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const Segment& seg = *sources[i].segment;
+      const double d = segment_distance(P[v], seg.a, seg.b, &closest[i]);
+      const double radius = (closest[i] - seg.a).norm() < 1e-9   ? end_radius[i][0]
+                            : (closest[i] - seg.b).norm() < 1e-9 ? end_radius[i][1]
+                                                                 : seg.radius;
+      order.push_back({d / radius, int(i)});
+    }
     std::sort(order.begin(), order.end());
     for (std::size_t r = 0; r < std::min<std::size_t>(order.size(), 8); ++r) {
       const Vec3& q = closest[order[r].second];
