@@ -7,7 +7,7 @@
 
 namespace body {
 
-GridFraming::GridFraming(const Model& model) {
+GridFraming::GridFraming(const Model& model) : heights_(model) {
   const Eigen::Index v = model.vertex_count();
   if (v == 0 || model.shapedirs.rows() != 3 * v) {
     throw std::invalid_argument("grid framing: the model '" + model.name +
@@ -35,33 +35,30 @@ Eigen::VectorXd mean_point(const std::vector<Eigen::VectorXd>& xs, int dims) {
 
 }  // namespace
 
-Eigen::VectorXf GridFraming::mean_heights(const std::vector<Eigen::VectorXd>& xs) const {
+FramedBand GridFraming::frame(const std::vector<Eigen::VectorXd>& xs, const BandRule& rule) const {
+  // The mean body's heights above its lowest vertex.
   const Eigen::VectorXf body = template_ + unit_dirs_ * mean_point(xs, dims()).cast<float>();
   Eigen::VectorXf y(body.size() / 3);
   for (Eigen::Index i = 0; i < y.size(); ++i) y[i] = body[3 * i + 1];
-  return y.array() - y.minCoeff();
-}
-
-double GridFraming::middle_height_m(const std::vector<Eigen::VectorXd>& xs) const {
-  return static_cast<double>(mean_heights(xs).maxCoeff());
-}
-
-double GridFraming::tallest_m(const std::vector<Eigen::VectorXd>& xs) const {
-  double tallest = 0.0;
-  for (const auto& x : xs) {
-    const Eigen::VectorXf body = template_ + unit_dirs_ * x.cast<float>();
-    const auto y = Eigen::Map<const Eigen::VectorXf, 0, Eigen::InnerStride<3>>(body.data() + 1,
-                                                                               body.size() / 3);
-    tallest = std::max(tallest, static_cast<double>(y.maxCoeff() - y.minCoeff()));
+  y = (y.array() - y.minCoeff()).matrix();
+  FramedBand framed;
+  framed.tallest_m = heights_.tallest_m(xs);
+  framed.band = band_on(y, framed.tallest_m, xs, rule);
+  for (Eigen::Index v = 0; v < y.size(); ++v) {
+    const double h = static_cast<double>(y[v]);
+    if (h >= framed.band.bottom_m && h <= framed.band.top_m) {
+      framed.vertices.push_back(static_cast<int>(v));
+    }
   }
-  return tallest;
+  return framed;
 }
 
-HeightBand GridFraming::band(const std::vector<Eigen::VectorXd>& xs, const BandRule& rule) const {
-  const Eigen::VectorXf y = mean_heights(xs);
+HeightBand GridFraming::band_on(const Eigen::VectorXf& y, double tallest_m,
+                                const std::vector<Eigen::VectorXd>& xs,
+                                const BandRule& rule) const {
   const double height = static_cast<double>(y.maxCoeff());
   const double margin = std::max(0.0, rule.margin_m);
-  const HeightBand whole{-margin, tallest_m(xs) + margin};
+  const HeightBand whole{-margin, tallest_m + margin};
   if (xs.size() < 2) return whole;
   const Eigen::VectorXd mean = mean_point(xs, dims());
   Eigen::MatrixXf offsets(dims(), static_cast<Eigen::Index>(xs.size()));
@@ -90,17 +87,6 @@ HeightBand GridFraming::band(const std::vector<Eigen::VectorXd>& xs, const BandR
   if (band.bottom_m < rule.feet_share * height) band.bottom_m = whole.bottom_m;
   if (band.bottom_m <= whole.bottom_m) return whole;
   return band;
-}
-
-std::vector<int> GridFraming::vertices_in(const std::vector<Eigen::VectorXd>& xs,
-                                          const HeightBand& band) const {
-  const Eigen::VectorXf y = mean_heights(xs);
-  std::vector<int> inside;
-  for (Eigen::Index v = 0; v < y.size(); ++v) {
-    const double h = static_cast<double>(y[v]);
-    if (h >= band.bottom_m && h <= band.top_m) inside.push_back(static_cast<int>(v));
-  }
-  return inside;
 }
 
 }  // namespace body

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "body/body_model.hpp"
+#include "body/standing_height.hpp"
 
 namespace body {
 
@@ -34,32 +35,37 @@ struct BandRule {
   double feet_share = 0.25;
 };
 
+// A grid's band and what lies in it, from one evaluation of the points' mean body.
+struct FramedBand {
+  HeightBand band;
+  std::vector<int> vertices;  // of the points' mean body inside the band (indices, ascending)
+  double tallest_m = 0.0;     // the tallest of the points' bodies (lowest to highest vertex)
+};
+
 class GridFraming {
  public:
   // Uses the model's kept components (search points x in [0, 1], beta = 6x - 3). Throws
   // std::invalid_argument for a model without vertices or with mismatched shape directions.
   explicit GridFraming(const Model& model);
   int dims() const { return static_cast<int>(unit_dirs_.cols()); }
-
-  // Heights (m) from the lowest to the highest vertex of the body of the points' mean: the
-  // body the bands are measured on.
-  double middle_height_m(const std::vector<Eigen::VectorXd>& xs) const;
-  // The height (m, lowest to highest vertex) of the tallest of the points' bodies.
-  double tallest_m(const std::vector<Eigen::VectorXd>& xs) const;
-
+  // How tall the points' bodies stand (the band's top is the tallest head).
+  const StandingHeights& heights() const { return heights_; }
   // The band of heights on the points' mean body from rule.margin_m above the tallest of their
   // heads down to rule.margin_m below the lowest vertex that moves at least rule.share of the
   // most any vertex moves across the points, at least rule.min_height_m high, taken to the
   // floor past rule.feet_share of the height. The whole body [-margin, tallest + margin] when
   // that band reaches the floor (or for fewer than two points, or points that do not differ).
-  HeightBand band(const std::vector<Eigen::VectorXd>& xs, const BandRule& rule = {}) const;
-
-  // The vertices of the points' mean body inside the band (indices, ascending).
-  std::vector<int> vertices_in(const std::vector<Eigen::VectorXd>& xs,
-                               const HeightBand& band) const;
+  // Heights are above the floor under the mean body (its lowest vertex).
+  FramedBand frame(const std::vector<Eigen::VectorXd>& xs, const BandRule& rule = {}) const;
+  HeightBand band(const std::vector<Eigen::VectorXd>& xs, const BandRule& rule = {}) const {
+    return frame(xs, rule).band;
+  }
 
  private:
-  Eigen::VectorXf mean_heights(const std::vector<Eigen::VectorXd>& xs) const;
+  HeightBand band_on(const Eigen::VectorXf& heights, double tallest_m,
+                     const std::vector<Eigen::VectorXd>& xs, const BandRule& rule) const;
+
+  StandingHeights heights_;
   Eigen::VectorXf template_;   // 3V: the body at x = 0 (all coefficients at -3 SD)
   Eigen::MatrixXf unit_dirs_;  // 3V x K: d vertices / d x (m)
 };

@@ -3,16 +3,21 @@
 namespace spaces {
 
 FramedBodies::FramedBodies(const body::Model& model, BodyFraming framing)
-    : framing_(framing), distance_(model), heights_(model), bands_(model) {}
+    : framing_(framing), distance_(model), bands_(model) {}
 
 FramedBodies::View FramedBodies::view(const std::vector<Eigen::VectorXd>& xs) const {
-  const View whole{{app::cell_frame_scale(heights_.tallest_m(xs)), 0.0}, {}};
-  if (framing_ == BodyFraming::kWholeBody || xs.size() < 2) return whole;
-  const body::HeightBand band = bands_.band(xs);
-  const app::GridFrame frame = app::cell_frame_for_band(band.bottom_m, band.top_m);
+  const auto whole = [](double tallest_m) {
+    return View{{app::cell_frame_scale(tallest_m), 0.0}, {}};
+  };
+  if (framing_ == BodyFraming::kWholeBody || xs.size() < 2) {
+    return whole(bands_.heights().tallest_m(xs));
+  }
+  body::FramedBand framed = bands_.frame(xs);
+  const View all = whole(framed.tallest_m);
+  const app::GridFrame frame = app::cell_frame_for_band(framed.band.bottom_m, framed.band.top_m);
   // A band that needs (nearly) the whole body's frame is shown as the whole body.
-  if (frame.scale >= 0.95 * whole.frame.scale) return whole;
-  return {frame, bands_.vertices_in(xs, band)};
+  if (frame.scale >= 0.95 * all.frame.scale) return all;
+  return {frame, std::move(framed.vertices)};
 }
 
 double typical_frame_scale(BodyFraming framing) {

@@ -60,7 +60,6 @@ class FramedBodies {
 
   BodyFraming framing_;
   body::ShapeDistance distance_;
-  body::StandingHeights heights_;
   body::GridFraming bands_;
 };
 

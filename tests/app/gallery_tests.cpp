@@ -1909,7 +1909,8 @@ TEST_CASE("close-ups frame a grid on the band where its bodies differ and compar
     std::vector<Eigen::VectorXd> xs(3, Eigen::VectorXd::Constant(10, 0.5));
     xs[1][k] = 0.45;
     xs[2][k] = 0.55;
-    const body::HeightBand band = bands.band(xs);
+    const body::FramedBand framed = bands.frame(xs);
+    const body::HeightBand& band = framed.band;
     const app::GridFrame frame = perception->grid_frame(xs);
     const double whole_scale = app::cell_frame_scale(heights.tallest_m(xs));
     CHECK(frame.scale <= whole_scale + 1e-12);
@@ -1917,7 +1918,7 @@ TEST_CASE("close-ups frame a grid on the band where its bodies differ and compar
     const Eigen::VectorXf a = body::vertex_norms(raw.displacement_mm(xs[1], xs[0]));
     const Eigen::VectorXf b = body::vertex_norms(raw.displacement_mm(xs[2], xs[0]));
     const Eigen::VectorXf moves = a.cwiseMax(b);
-    const std::vector<int> in_view = bands.vertices_in(xs, band);
+    const std::vector<int>& in_view = framed.vertices;
     std::vector<bool> shown(static_cast<std::size_t>(model.vertex_count()), false);
     for (const int v : in_view) shown[static_cast<std::size_t>(v)] = true;
     int missed = 0;

@@ -40,21 +40,24 @@ TEST_CASE("grid framing: the band holds what moves, up to the tallest head", "[g
   const body::BandRule rule;
   // The mean body stands 1.8 m (x = 0.5: every beta 0).
   const auto belly = grid_along(0, 0.05);
-  CHECK(framing.middle_height_m(belly) == Approx(1.8).epsilon(1e-5));
-  const body::HeightBand b = framing.band(belly);
+  CHECK(framing.heights().height_m(belly[0]) == Approx(1.8).epsilon(1e-5));
+  const body::FramedBand framed = framing.frame(belly);
+  const body::HeightBand b = framed.band;
+  CHECK(framed.tallest_m == Approx(framing.heights().tallest_m(belly)));
+  CHECK(framing.band(belly).bottom_m == Approx(b.bottom_m));
   // From below the belly (1.0 m less the margin) to above the head; at least the least band.
   CHECK(b.top_m == Approx(1.8 + rule.margin_m).epsilon(1e-5));
   CHECK(
       b.bottom_m ==
       Approx(std::min(1.0 - rule.margin_m, 1.8 + rule.margin_m - rule.min_height_m)).epsilon(1e-5));
-  const std::vector<int> in_view = framing.vertices_in(belly, b);
+  const std::vector<int>& in_view = framed.vertices;
   CHECK(in_view.front() == 9);  // 0.9 m: the first vertex above the band's bottom (0.85 m)
   CHECK(in_view.back() == 18);
   // Longer bodies: the head moves most, the band is the least one under the tallest head.
   const auto taller = grid_along(1, 0.1);
-  CHECK(framing.tallest_m(taller) == Approx(1.8 + 0.6 * 0.1).epsilon(1e-4));
+  CHECK(framing.heights().tallest_m(taller) == Approx(1.8 + 0.6 * 0.1).epsilon(1e-4));
   const body::HeightBand t = framing.band(taller);
-  CHECK(t.top_m == Approx(framing.tallest_m(taller) + rule.margin_m).epsilon(1e-5));
+  CHECK(t.top_m == Approx(framing.heights().tallest_m(taller) + rule.margin_m).epsilon(1e-5));
   CHECK(t.height_m() == Approx(rule.min_height_m).epsilon(1e-5));
   // Shins that move: the band reaches the floor, the whole body.
   const body::HeightBand s = framing.band(grid_along(2, 0.05));
