@@ -196,7 +196,8 @@ double rotation_share_strength(int joint) {
 struct HingeContact {
   Vec3 centre = Vec3::Zero();
   Vec3 up = Vec3::Zero(), down = Vec3::Zero();  // rest directions to the parent and child joints
-  double reach = 0;  // rest distance from the joint within which flesh can meet
+  Vec3 normal = Vec3::Zero();  // across the joint's plane at rest, to the child's side
+  double reach = 0;            // rest distance from the joint within which flesh can meet
   // Pressed flesh ends within 2 gaps of the plane (a vertex on it 1 gap from it).
   static constexpr double kGap = 0.006;
 
@@ -204,6 +205,7 @@ struct HingeContact {
       : centre(rig.joints[joint]),
         up((rig.joints[parent] - centre).normalized()),
         down((rig.joints[child] - centre).normalized()),
+        normal((down - up).normalized()),
         reach(0.8 * std::min((rig.joints[parent] - centre).norm(),
                              (rig.joints[child] - centre).norm())) {}
 
@@ -221,7 +223,7 @@ struct HingeContact {
     const Vec3 n = (w - up).normalized();  // the bisecting plane's normal, to the child
     // Which limb the vertex belongs to is the side of the joint's plane it lies on at rest (the
     // crease's vertices on the plane fade out within 3 mm of it).
-    const double along = (rest - centre).dot((down - up).normalized());
+    const double along = (rest - centre).dot(normal);
     const double limb = std::clamp(std::abs(along) / 0.003, 0.0, 1.0);
     // Only on the bend's inside: the kneecap's and the elbow's outer skin are never pressed.
     const double inside = std::clamp((skinned - centre).dot(inner.normalized()) / 0.02, 0.0, 1.0);
@@ -254,7 +256,6 @@ struct HingeContact {
              const Eigen::Matrix3d& R, std::vector<Vec3>& offsets) const {
     constexpr double kRing = 0.02, kMost = 0.02;
     const int rings = static_cast<int>(reach / kRing) + 2;
-    const Vec3 normal = (down - up).normalized();
     std::vector<double> given(2 * rings, 0.0), takers(2 * rings, 0.0);
     const auto place = [&](const Vec3& p, int* side, int* ring, double* frac) {
       const double along = (p - centre).dot(normal);

@@ -1,7 +1,5 @@
 #include "smplx_rig.hpp"
 
-#include <array>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -125,17 +123,17 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
   // zone with it (the calf 10 cm below the knee still moved 20 % with the thigh), so that the
   // calf and thigh crossed each other when the knee bent. The other joints keep theirs (their
   // correctives are tuned to them).
-  std::vector<std::array<double, 2>> end_radius(sources.size());
+  std::vector<double> past_end_radius(sources.size());
   for (std::size_t i = 0; i < sources.size(); ++i) {
     const Segment& seg = *sources[i].segment;
-    end_radius[i] = {seg.radius, seg.radius};
+    past_end_radius[i] = seg.radius;
     const int j = sources[i].joint;
     const bool hinge_parent =
         j == kLeftHip || j == kRightHip || j == kLeftShoulder || j == kRightShoulder;
     if (!hinge_parent) continue;
     const int hinge = j == kLeftHip || j == kRightHip ? j + 3 : j + 2;  // the knee, the elbow
     for (const Segment& next : rig.segments[hinge])
-      if ((next.a - seg.b).norm() < 1e-3) end_radius[i][1] = std::min(seg.radius, next.radius);
+      if ((next.a - seg.b).norm() < 1e-3) past_end_radius[i] = std::min(seg.radius, next.radius);
   }
   Eigen::VectorXd heat = Eigen::VectorXd::Zero(V);
   std::vector<int> nearest(V, -1);
@@ -146,9 +144,7 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
     for (std::size_t i = 0; i < sources.size(); ++i) {
       const Segment& seg = *sources[i].segment;
       const double d = segment_distance(P[v], seg.a, seg.b, &closest[i]);
-      const double radius = (closest[i] - seg.a).norm() < 1e-9   ? end_radius[i][0]
-                            : (closest[i] - seg.b).norm() < 1e-9 ? end_radius[i][1]
-                                                                 : seg.radius;
+      const double radius = (closest[i] - seg.b).norm() < 1e-9 ? past_end_radius[i] : seg.radius;
       order.push_back({d / radius, int(i)});
     }
     std::sort(order.begin(), order.end());
