@@ -623,6 +623,17 @@ TEST_CASE(
     CHECK(w.intersections_worst <= 40);
     CHECK(wo.intersections_worst > 100);
   }
+  // Raised straight forward, the upper arm's inner skin meets the pectoral: the shoulders'
+  // correctives keep it outside the chest (90 pairs on this body with the previous ones).
+  {
+    const body::PoseResult& w = find(a, "shoulder-flex-90");
+    const body::PoseResult& wo = find(b, "shoulder-flex-90");
+    INFO("shoulder-flex-90: " << w.intersections_worst
+                              << " self-intersecting pairs with the correctives, "
+                              << wo.intersections_worst << " without");
+    CHECK(w.intersections_worst == 0);
+    CHECK(wo.intersections_worst > 100);
+  }
   // At the shoulders, hips and head each vertex of the blend zone turns by its share of the
   // rotation: the region keeps its volume where plain skinning collapses it onto the chord,
   // and the raised arm no longer sinks into the shoulder (self-intersections there before).

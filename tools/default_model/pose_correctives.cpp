@@ -1,14 +1,18 @@
 #include "pose_correctives.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <set>
 #include <thread>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "body/pose_quality.hpp"
 #include "npz_writer.hpp"
 
 namespace default_model {
@@ -83,6 +87,10 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
       out.push_back(between(
           d, Vec3(0.2 * sx, -std::cos(a * M_PI / 180), std::sin(a * M_PI / 180)).normalized()));
     out.push_back(between(d, Vec3(0.3 * sx, -0.8, -0.5).normalized()));
+    // Straight forward as the pose library raises an arm (down to hanging, then forward): the
+    // arm's front turns up, where the smallest turn from the A-pose turns it in, and its inner
+    // skin meets the pectoral.
+    out.push_back(between(Vec3(0, -1, 0), Vec3(0, 0, 1)) * between(d, Vec3(0, -1, 0)));
     for (double a : {-60.0, 60.0}) out.push_back(turn(d, a));
   } else if (joint == kLeftElbow || joint == kRightElbow) {
     const Vec3 d = dir(joint - 2, joint);        // the upper arm
@@ -297,22 +305,121 @@ struct HingeContact {
   }
 };
 
+// Flesh in contact where the arm meets the trunk. Raised straight forward from the A-pose,
+// the upper arm's inner skin swings onto the pectoral, which the shoulder's blend zone turns
+// with the arm by only a third: each vertex turned by its share of the rotation, the two went
+// through each other (about 35 intersecting triangle pairs a side at 90 degrees of flexion).
+// There is no plane between a ball joint's limb and a broad trunk as there is between a
+// hinge's two segments, so the crossings themselves are resolved: the arm's faces that cross
+// a face of the trunk's side (one that turns with the arm by at least 0.3 less) are pushed out
+// along that face's normal until they clear it by 4 mm, the push spread over the arm's skin
+// round it so that it leaves no step, a few rounds until nothing crosses.
+struct SocketContact {
+  static constexpr double kClear = 0.004;  // how far past the trunk's face the arm's skin ends
+  static constexpr int kRounds = 8;
+  static constexpr int kRings = 8;
+  std::vector<std::vector<int>> next;     // each vertex's neighbours
+  body::Faces near;                       // the faces near the joint
+  std::set<std::pair<int, int>> at_rest;  // pairs of `near` that already cross at rest
+
+  SocketContact(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& faces,
+                const Vec3& joint, double reach) {
+    const int V = static_cast<int>(P.size());
+    next.resize(V);
+    std::vector<int> picked;
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+      const auto& t = faces[f];
+      for (int k = 0; k < 3; ++k) next[t[k]].push_back(t[(k + 1) % 3]);
+      if (((P[t[0]] + P[t[1]] + P[t[2]]) / 3.0 - joint).norm() < reach) picked.push_back(f);
+    }
+    near.resize(static_cast<Eigen::Index>(picked.size()), 3);
+    for (std::size_t i = 0; i < picked.size(); ++i)
+      for (int k = 0; k < 3; ++k) near(static_cast<Eigen::Index>(i), k) = faces[picked[i]][k];
+    for (const auto& pr : body::intersecting_face_pairs(as_vertices(P), near)) at_rest.insert(pr);
+  }
+
+  static body::Vertices as_vertices(const std::vector<Vec3>& X) {
+    body::Vertices out(static_cast<Eigen::Index>(X.size()), 3);
+    for (std::size_t v = 0; v < X.size(); ++v)
+      out.row(static_cast<Eigen::Index>(v)) = X[v].cast<float>().transpose();
+    return out;
+  }
+
+  // How far each `zone` vertex of the arm's skin in `X` (all vertices, posed) must move for it
+  // to clear the trunk's faces it crosses (the vertices moved are in the zone: the shoulder's
+  // blend zone and the upper arm near it).
+  std::vector<Vec3> press(std::vector<Vec3> X, const Eigen::VectorXd& share,
+                          const std::vector<int>& zone) const {
+    std::vector<Vec3> moved(zone.size(), Vec3::Zero());
+    std::vector<int> where(X.size(), -1);
+    for (std::size_t i = 0; i < zone.size(); ++i) where[zone[i]] = static_cast<int>(i);
+    const auto face_share = [&](int f) {
+      return (share[near(f, 0)] + share[near(f, 1)] + share[near(f, 2)]) / 3.0;
+    };
+    for (int round = 0; round < kRounds; ++round) {
+      std::vector<Vec3> push(X.size(), Vec3::Zero());
+      bool any = false;
+      for (auto [f, g] : body::intersecting_face_pairs(as_vertices(X), near)) {
+        if (at_rest.count({f, g})) continue;
+        if (face_share(f) < face_share(g)) std::swap(f, g);
+        if (face_share(f) < 0.5 || face_share(f) - face_share(g) < 0.3) continue;
+        const Vec3 a = X[near(g, 0)];
+        const Vec3 n = (X[near(g, 1)] - a).cross(X[near(g, 2)] - a).normalized();
+        for (int k = 0; k < 3; ++k) {
+          const int v = static_cast<int>(near(f, k));
+          if (where[v] < 0 || share[v] < 0.5) continue;
+          const double need = kClear - (X[v] - a).dot(n);
+          if (need > push[v].norm()) {
+            push[v] = need * n;
+            any = true;
+          }
+        }
+      }
+      if (!any) break;
+      // Spread over kRings rings of the arm's skin (not across the seam) in a tent: a vertex
+      // r rings from a pushed one moves (1 - r / (kRings + 1)) as far. Halving each ring over
+      // three rings left a dent with ridges round it on the inner arm.
+      std::vector<Vec3> seed = push;
+      std::vector<int> ring_of(X.size(), 0);
+      const auto reach = [](int ring) { return 1.0 - static_cast<double>(ring) / (kRings + 1); };
+      for (int ring = 0; ring < kRings; ++ring) {
+        std::vector<Vec3> next_seed = seed;
+        std::vector<int> next_ring = ring_of;
+        for (std::size_t v = 0; v < X.size(); ++v) {
+          if (where[v] < 0 || share[v] < 0.5) continue;
+          for (int w : next[v]) {
+            const double from_w = seed[w].norm() * reach(ring_of[w] + 1);
+            if (ring_of[w] < kRings && from_w > next_seed[v].norm() * reach(next_ring[v])) {
+              next_seed[v] = seed[w];
+              next_ring[v] = ring_of[w] + 1;
+            }
+          }
+        }
+        seed.swap(next_seed);
+        ring_of.swap(next_ring);
+      }
+      for (std::size_t v = 0; v < X.size(); ++v) push[v] = reach(ring_of[v]) * seed[v];
+      for (std::size_t v = 0; v < X.size(); ++v)
+        if (where[v] >= 0 && push[v].squaredNorm() > 0.0) {
+          X[v] += push[v];
+          moved[where[v]] += push[v];
+        }
+    }
+    return moved;
+  }
+};
+
 bool is_hinge(int joint) {
   return joint == kLeftElbow || joint == kRightElbow || joint == kLeftKnee || joint == kRightKnee;
 }
-
-// A body other than the template on which the hinges' contact is found (a model's mean body,
-// whose limbs are thicker than the template's), with the rig's joints at its own joints.
-struct ContactBody {
-  const std::vector<Vec3>* rest = nullptr;
-  const SmplxRig* rig = nullptr;
-};
 
 // The fit of one joint's columns on the rest body P (with the rig's joints at that body's
 // joints). The template kind needs the mannequin whose primitives it poses.
 JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen::VectorXd& share,
                    const Eigen::MatrixXd& weights, int joint, PosedTarget kind,
-                   const Mannequin* mannequin, const ContactBody& other) {
+                   const Mannequin* mannequin, const ContactBody& other,
+                   const std::vector<std::array<int, 3>>* faces,
+                   const std::vector<ContactBody>* socket_bodies) {
   const int V = static_cast<int>(P.size());
   JointFit fit;
   // The hinges' flesh meets beyond their blend zones: the two segments near the joint take
@@ -323,11 +430,24 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
   const std::vector<Vec3>& C = other.rest ? *other.rest : P;
   const SmplxRig& contact_rig = other.rig ? *other.rig : rig;
   const HingeContact contact(contact_rig, joint, parent, child);
+  // The arm's skin near the shoulder takes correctives too, where it meets the trunk.
+  const bool socket = kind == PosedTarget::kRotationShare && faces && socket_bodies &&
+                      (joint == kLeftShoulder || joint == kRightShoulder);
+  // Within 80 % of the upper arm's length of the shoulder, as the hinges' reach.
+  const auto arm_reach = [&](const SmplxRig& r) {
+    return 0.8 * (r.joints[joint + 2] - r.joints[joint]).norm();
+  };
+  std::vector<SocketContact> trunks;
+  if (socket)
+    for (const ContactBody& b : *socket_bodies)
+      trunks.emplace_back(*b.rest, *faces, b.rig->joints[joint], arm_reach(*b.rig));
   for (int v = 0; v < V; ++v) {
     const bool blend = share[v] > 0.005 && share[v] < 0.995;
     const bool near_limb = hinge && (C[v] - contact.centre).norm() < contact.reach &&
                            (share[v] >= 0.995 || weights(v, parent) > 0.5);
-    if (blend || near_limb) fit.zone.push_back(v);
+    const bool near_arm =
+        socket && share[v] >= 0.995 && (P[v] - rig.joints[joint]).norm() < arm_reach(rig);
+    if (blend || near_limb || near_arm) fit.zone.push_back(v);
   }
   const std::vector<Eigen::Matrix3d> rotations = joint_rotations(joint, rig);
   const int S = static_cast<int>(rotations.size()), n = static_cast<int>(fit.zone.size());
@@ -343,11 +463,19 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
     const JointPose pose =
         kind == PosedTarget::kTemplate ? joint_pose(joint, R, mannequin->skeleton()) : JointPose{};
     const Eigen::AngleAxisd turn_of(R);
+    // Linear blending of rest vertex p about the joint at o, and the rotation share's target.
+    const auto skin = [&](const Vec3& p, const Vec3& o, int v) {
+      return Vec3((1.0 - share[v]) * p + share[v] * (o + R * (p - o)));
+    };
+    const auto shared_turn = [&](const Vec3& p, const Vec3& o, int v) {
+      const Eigen::AngleAxisd part(share[v] * turn_of.angle(), turn_of.axis());
+      return Vec3(o + part.toRotationMatrix() * (p - o));
+    };
     std::vector<Vec3> offsets(n, Vec3::Zero()), zone_rest(n);
     std::vector<double> pressed(n, 0.0);
     for (int i = 0; i < n; ++i) {
       const int v = fit.zone[i];
-      const Vec3 skinned = (1.0 - share[v]) * P[v] + share[v] * (c + R * (P[v] - c));
+      const Vec3 skinned = skin(P[v], c, v);
       Vec3& r = offsets[i];
       if (kind == PosedTarget::kTemplate) {
         r = mannequin->project(skinned, 8, &pose) - skinned;
@@ -362,11 +490,30 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
           zone_rest[i] = C[v];
         }
       } else {
-        const Eigen::AngleAxisd part(share[v] * turn_of.angle(), turn_of.axis());
-        r = strength * (c + part.toRotationMatrix() * (P[v] - c) - skinned);
+        r = strength * (shared_turn(P[v], c, v) - skinned);
       }
     }
     if (hinge) contact.bulge(zone_rest, pressed, R, offsets);
+    if (socket) {
+      // The correctives are one set for all bodies: each body in turn (the mean body first, then
+      // its +-3 SD bodies) is posed with the moves the bodies before it needed and adds what it
+      // still needs. Taking the largest move per vertex over the bodies instead crumpled the
+      // mean body's armpit (folds of 179 degrees).
+      std::vector<Vec3> moves(n, Vec3::Zero());
+      for (std::size_t b = 0; b < trunks.size(); ++b) {
+        const std::vector<Vec3>& Q = *(*socket_bodies)[b].rest;
+        const Vec3 cb = (*socket_bodies)[b].rig->joints[joint];
+        std::vector<Vec3> X(V);
+        for (int v = 0; v < V; ++v) X[v] = skin(Q[v], cb, v);
+        for (int i = 0; i < n; ++i) {
+          const int v = fit.zone[i];
+          X[v] += strength * (shared_turn(Q[v], cb, v) - X[v]) + moves[i];
+        }
+        const std::vector<Vec3> m = trunks[b].press(std::move(X), share, fit.zone);
+        for (int i = 0; i < n; ++i) moves[i] += m[i];
+      }
+      for (int i = 0; i < n; ++i) offsets[i] += moves[i];
+    }
     for (int i = 0; i < n; ++i) {
       const int v = fit.zone[i];
       const Eigen::Matrix3d M = (1.0 - share[v]) * Eigen::Matrix3d::Identity() + share[v] * R;
@@ -409,7 +556,9 @@ PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind
                                 const std::vector<Vec3>& P, const SmplxRig& rig,
                                 const Eigen::MatrixXd& weights, int threads,
                                 const Mannequin* mannequin, Eigen::MatrixXf& posedirs,
-                                const ContactBody& other = {}) {
+                                const ContactBody& other = {},
+                                const std::vector<std::array<int, 3>>* faces = nullptr,
+                                const std::vector<ContactBody>* socket_bodies = nullptr) {
   const int V = static_cast<int>(P.size());
   const int J = rig.size();
   std::vector<std::vector<char>> in_subtree(J, std::vector<char>(J, 0));
@@ -424,7 +573,8 @@ PoseCorrectiveReport fit_joints(const std::vector<int>& joints, PosedTarget kind
         Eigen::VectorXd share = Eigen::VectorXd::Zero(V);
         for (int k = 0; k < J; ++k)
           if (in_subtree[joints[i]][k]) share += weights.col(k);
-        fits[i] = fit_joint(P, rig, share, weights, joints[i], kind, mannequin, other);
+        fits[i] = fit_joint(P, rig, share, weights, joints[i], kind, mannequin, other, faces,
+                            socket_bodies);
       }
     });
   for (auto& th : pool) th.join();
@@ -475,12 +625,15 @@ void fit_hinge_contact_correctives(const Mannequin& mannequin, const TriMesh& me
              posedirs, ContactBody{&rest, &rest_rig});
 }
 
-void fit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,
-                                    const Eigen::MatrixXd& weights, int threads,
-                                    Eigen::MatrixXf& posedirs, PoseCorrectiveReport* report) {
+void fit_rotation_share_correctives(const std::vector<Vec3>& rest,
+                                    const std::vector<std::array<int, 3>>& faces,
+                                    const std::vector<ContactBody>& contact_bodies,
+                                    const SmplxRig& rig, const Eigen::MatrixXd& weights,
+                                    int threads, Eigen::MatrixXf& posedirs,
+                                    PoseCorrectiveReport* report) {
   const PoseCorrectiveReport shared =
       fit_joints(rotation_share_joints(), PosedTarget::kRotationShare, rest, rig, weights, threads,
-                 nullptr, posedirs);
+                 nullptr, posedirs, {}, &faces, &contact_bodies);
   if (report) {
     report->rotation_share_joints = shared.joints;
     report->rotation_share_poses = shared.poses;

@@ -19,6 +19,13 @@
 
 namespace default_model {
 
+// A body of the template's topology other than the template (a model's mean body, one of its
+// +-3 SD bodies), with the rig's joints at its own joints: where flesh meets is found on it.
+struct ContactBody {
+  const std::vector<Vec3>* rest = nullptr;
+  const SmplxRig* rig = nullptr;
+};
+
 struct PoseCorrectiveReport {
   int joints = 0;                 // joints with correctives
   int poses = 0;                  // posed templates fitted
@@ -49,10 +56,14 @@ void fit_hinge_contact_correctives(const Mannequin& mannequin, const TriMesh& me
 // the template's topology (a model's mean body, with `rig`'s joints at that body's joints): each
 // blend-zone vertex turned by its share of the rotation. Their offsets are a share of each vertex's
 // distance from the joint, so they are fitted per model (slimmer arms than the template's need
-// smaller ones). Adds their counts to `report`.
-void fit_rotation_share_correctives(const std::vector<Vec3>& rest, const SmplxRig& rig,
-                                    const Eigen::MatrixXd& weights, int threads,
-                                    Eigen::MatrixXf& posedirs,
+// smaller ones). At the shoulders the arm's skin is also kept off the trunk where the two meet
+// (an arm raised forward onto the pectoral), on each of `contact_bodies` (the mean body first,
+// then the bodies whose contact it must also cover). Adds their counts to `report`.
+void fit_rotation_share_correctives(const std::vector<Vec3>& rest,
+                                    const std::vector<std::array<int, 3>>& faces,
+                                    const std::vector<ContactBody>& contact_bodies,
+                                    const SmplxRig& rig, const Eigen::MatrixXd& weights,
+                                    int threads, Eigen::MatrixXf& posedirs,
                                     PoseCorrectiveReport* report = nullptr);
 
 }  // namespace default_model
