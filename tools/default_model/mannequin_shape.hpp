@@ -48,6 +48,16 @@ enum Joint : int {
   kRightHand
 };
 
+// The next joint down a limb (hip -> knee -> ankle -> foot, shoulder -> elbow -> wrist ->
+// hand): SMPL's order interleaves the two sides and the spine, so a leg steps by 3 and an arm
+// by 2.
+constexpr int limb_child(int joint) {
+  return joint == kLeftHip || joint == kRightHip || joint == kLeftKnee || joint == kRightKnee ||
+                 joint == kLeftAnkle || joint == kRightAnkle
+             ? joint + 3
+             : joint + 2;
+}
+
 // The rest skeleton: each joint's position and the segment ("bone") that the joint drives,
 // from bone_start to bone_end (for most joints bone_start is the joint itself), with the
 // segment's typical radius (used to normalise distances when computing skin weights).

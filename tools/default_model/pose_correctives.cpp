@@ -78,7 +78,7 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
   std::vector<Eigen::Matrix3d> out;
   const auto dir = [&](int a, int b) { return (rig.joints[b] - rig.joints[a]).normalized(); };
   if (joint == kLeftShoulder || joint == kRightShoulder) {
-    const Vec3 d = dir(joint, joint + 2);  // to the elbow
+    const Vec3 d = dir(joint, limb_child(joint));  // to the elbow
     // Up the side (abduction) to 170 degrees from hanging, down to the body, forward and up,
     // back, and turned about the arm.
     for (double a : {10.0, 80.0, 120.0, 170.0})
@@ -93,13 +93,13 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
     out.push_back(between(Vec3(0, -1, 0), Vec3(0, 0, 1)) * between(d, Vec3(0, -1, 0)));
     for (double a : {-60.0, 60.0}) out.push_back(turn(d, a));
   } else if (joint == kLeftElbow || joint == kRightElbow) {
-    const Vec3 d = dir(joint - 2, joint);        // the upper arm
-    const Vec3 f = dir(joint, joint + 2);        // the forearm
-    const Vec3 hinge = d.cross(Z).normalized();  // turns the forearm forwards
+    const Vec3 d = dir(rig.parents[joint], joint);  // the upper arm
+    const Vec3 f = dir(joint, limb_child(joint));   // the forearm
+    const Vec3 hinge = d.cross(Z).normalized();     // turns the forearm forwards
     for (double a : {30.0, 60.0, 90.0, 130.0, 150.0}) out.push_back(turn(hinge, a));
     for (double a : {-90.0, -45.0, 45.0, 90.0}) out.push_back(turn(f, a));
   } else if (joint == kLeftWrist || joint == kRightWrist) {
-    const Vec3 f = dir(joint - 2, joint);
+    const Vec3 f = dir(rig.parents[joint], joint);
     // The palm faces the thigh in the A-pose: flexion turns the hand towards -x (left hand).
     const Vec3 palm = (Vec3(-sx, 0, 0) - f * f.dot(Vec3(-sx, 0, 0))).normalized();
     const Vec3 flex = f.cross(palm).normalized();
@@ -112,7 +112,7 @@ std::vector<Eigen::Matrix3d> joint_rotations(int joint, const SmplxRig& rig) {
     for (double a : {-40.0, -20.0, 20.0, 40.0}) out.push_back(turn(X, a));
     for (double a : {-20.0, 20.0}) out.push_back(turn(Z, a));
   } else if (joint == kLeftHip || joint == kRightHip) {
-    const Vec3 d = dir(joint, joint + 3);  // to the knee
+    const Vec3 d = dir(joint, limb_child(joint));  // to the knee
     // Forward (flexion, the shin's turn(X, +a) is backward), back, out to the side, and turned
     // about the thigh.
     for (double a : {30.0, 60.0, 90.0, 120.0}) out.push_back(turn(X, -a));
@@ -426,7 +426,7 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
   // correctives too (the parent segment's skin is weighted to the parent joint).
   const bool hinge = kind == PosedTarget::kTemplate && is_hinge(joint);
   const int parent = rig.parents[joint];
-  const int child = joint == kLeftKnee || joint == kRightKnee ? joint + 3 : joint + 2;
+  const int child = limb_child(joint);
   const std::vector<Vec3>& C = other.rest ? *other.rest : P;
   const SmplxRig& contact_rig = other.rig ? *other.rig : rig;
   const HingeContact contact(contact_rig, joint, parent, child);
@@ -435,7 +435,7 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
                       (joint == kLeftShoulder || joint == kRightShoulder);
   // Within 80 % of the upper arm's length of the shoulder, as the hinges' reach.
   const auto arm_reach = [&](const SmplxRig& r) {
-    return 0.8 * (r.joints[joint + 2] - r.joints[joint]).norm();
+    return 0.8 * (r.joints[limb_child(joint)] - r.joints[joint]).norm();
   };
   std::vector<SocketContact> trunks;
   if (socket)

@@ -131,7 +131,7 @@ Eigen::MatrixXd heat_weights(const TriMesh& mesh, const SmplxRig& rig,
     const bool hinge_parent =
         j == kLeftHip || j == kRightHip || j == kLeftShoulder || j == kRightShoulder;
     if (!hinge_parent) continue;
-    const int hinge = j == kLeftHip || j == kRightHip ? j + 3 : j + 2;  // the knee, the elbow
+    const int hinge = limb_child(j);  // the knee, the elbow
     for (const Segment& next : rig.segments[hinge])
       if ((next.a - seg.b).norm() < 1e-3) past_end_radius[i] = std::min(seg.radius, next.radius);
   }
