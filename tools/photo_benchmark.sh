@@ -111,12 +111,19 @@ timing = os.environ.get("REPORT_NOTE") or f"Wall time {seconds} s (2 shared core
 sps_rows = [rows(f"photo_{t}_sps") for t in ("random", "warmer-brighter", "cooler", "more-contrast")]
 sps_dup = max(float(x["duplicate_grids"]) for r in sps_rows for x in r.values())
 clean = sum(1 for r in sps_rows if max(float(x["duplicate_grids"]) for x in r.values()) == 0.0)
-lines += ["", f"Random targets: {verdict}. {timing}", "",
-          f"Look-alike grids: SPS as the window runs it shows none on {clean} of the four targets;",
-          f"elsewhere a few first grids of a plane (a share of at most {sps_dup:.3f} at any plane)",
-          "are ones no widening or narrowing separates. An uncertainty plane among them gives",
-          "way to the paper's plane; the paper's planes and random planes have nothing to fall",
-          "back on.", ""]
+fallback = ["A plane whose first grid no widening or narrowing separates gives way to the",
+            "paper's plane for the same choice, and where that cannot be told apart either (or",
+            "was the paper's already) to a plane through the same centre along the population's",
+            "principal axes (`sps::PlaneSearch::replace_with_population_plane`); the paper's",
+            "planes and random planes have nothing to fall back on."]
+if clean == len(sps_rows):
+    looks = ["Look-alike grids: SPS as the window runs it shows none on any of the four targets.",
+             *fallback, ""]
+else:
+    looks = [f"Look-alike grids: SPS as the window runs it shows none on {clean} of the four targets;",
+             f"elsewhere a few first grids of a plane (a share of at most {sps_dup:.3f} at any plane)",
+             "are ones no plane the session falls back on separates.", *fallback, ""]
+lines += ["", f"Random targets: {verdict}. {timing}", ""] + looks
 if "median_saved_gap" in r["sps"][1]:
     lines += [f"What the window saves after plane 10 (random targets, median) is {g(r['sps'], 10, 'median_saved_gap'):.2f}",
               f"from the target, the last pick {g(r['sps'], 10, 'median_last_pick_gap'):.2f} and the best pick so far",

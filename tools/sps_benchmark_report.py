@@ -210,12 +210,10 @@ BODY_VARIANTS = [
             "perceptual scale (first plane on the two most visible directions, length scales "
             "per millimetre, soft likelihood) and population (planes centred on the estimate of "
             "the body in mind: the choices as distances to it, the body model's population as "
-            "its prior) (the paper's planes towards the expected improvement; the window now "
-            "spans its planes for a person along where the estimate is least certain, which this "
-            "5 mm person would also gain from: mean gap at plane 10 over 100 trials, seeds "
-            "3000-3099, 9.12 -> 8.18 mm with `--plane-axes uncertainty`, measured before the "
-            "fallback to the paper's plane where the box leaves no uncertainty plane; see the "
-            "pixel person below)"),
+            "its prior), its planes spanned, as the window spans them for a person, along where "
+            "that estimate is least certain (`sps::PlaneAxes::kTargetUncertainty`; before "
+            "2026-12-06 this row used the paper's planes towards the expected improvement, "
+            "which the perfect chooser of the pixel person below still uses)"),
     ("sps-mean-centre", "the same, with planes centred on the GP's posterior-mean maximum "
                         "(`--no-target-model`, the search before the estimate)"),
     ("sps-plain", "SPS without them (fixed factor-2 zoom, every zoom-level click counted, the "
@@ -280,6 +278,20 @@ def body_section(results, trials):
                 a, b = float(o[10]["mean_gap"]), float(r[10]["mean_gap"])
                 p("- SPS beats %s at plane 10 (mean gap): %.2f vs %.2f mm, **%s**" % (
                     other, a, b, "met" if a < b else "missed"))
+        med15 = float(o[15]["median_gap"])
+        p("- median gap at plane 15 <= 5 mm: %.2f mm, **%s**" % (med15, "met" if med15 <= 5 else "missed"))
+        # The perfect chooser is the pixel person benchmark's reference row (same model,
+        # grid, seeds and planes; tools/pixel_person_benchmark.sh).
+        perfect_path = os.path.join(results, "pixel_perfect_sps.csv")
+        r = runs.get("sps-random")
+        if r and os.path.exists(perfect_path):
+            rnd, sps_gap = float(r[10]["mean_gap"]), float(o[10]["mean_gap"])
+            best = float(read_summary(perfect_path)[10]["mean_gap"])
+            if rnd > best:
+                share = (rnd - sps_gap) / (rnd - best)
+                p("- SPS closes at least half of the gap between random planes and the perfect "
+                  "chooser (`--jnd-mm 0`, %.2f mm) at plane 10, by mean: %.2f, **%s**" % (
+                      best, share, "met" if share >= 0.5 else "missed"))
         p()
     p("**The centre: the estimate of the body in mind** (a change of")
     p("2026-11-24). Logging every plane of the search as it was (`sps-mean-centre`) showed two")

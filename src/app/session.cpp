@@ -416,12 +416,17 @@ PlaneVetter Session::plane_vetter() const {
   if (projector_ || !distance_) return {};
   return [distance = distance_, threshold = policy_.look_alike_mm,
           n = settings_.grid_size](sps::PlaneSearch& search) {
-    const sps::Plane& plane = search.current_plane();
-    if (plane.is_line()) return;
-    const auto cells_of = [&](const sps::GridView& view) { return plane_cells(plane, n, view); };
-    if (!distinct_first_view(first_view(false, n), cells_of, distance, threshold)) {
-      search.replace_uncertainty_plane();
-    }
+    if (search.current_plane().is_line()) return;
+    const auto distinct = [&] {
+      const sps::Plane& plane = search.current_plane();
+      const auto cells_of = [&](const sps::GridView& view) { return plane_cells(plane, n, view); };
+      return distinct_first_view(first_view(false, n), cells_of, distance, threshold).has_value();
+    };
+    if (distinct()) return;
+    // The paper's plane for the same choice; where that cannot be told apart either (or the
+    // plane was the paper's already), the population's axes through the same centre.
+    if (search.replace_uncertainty_plane() && distinct()) return;
+    search.replace_with_population_plane();
   };
 }
 

@@ -200,9 +200,11 @@ int run_body_simulation(const ArgParser& args) {
   if (!(options.choice_temperature_mm >= 0.01 && options.choice_temperature_mm <= 1e3)) {
     throw ArgError("--choice-temperature-mm must be in [0.01, 1000]");
   }
-  // The pixel person stands for a person at the window: the planes the window makes for them
-  // (BodySpace::plane_axes), unless --plane-axes says otherwise.
-  if (pixel_person && !args.has("plane-axes"))
+  // A person who cannot tell near cells apart (the pixel person, or --jnd-mm above 0) gets the
+  // planes the window makes for a body search (BodySpace::plane_axes), unless --plane-axes
+  // says otherwise; the perfect chooser (--jnd-mm 0), a yardstick and not a person, keeps the
+  // paper's, which serve a precise chooser best.
+  if ((pixel_person || jnd_mm > 0.0) && !args.has("plane-axes"))
     options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
   const bool target_model = !args.has("no-target-model");
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);

@@ -450,6 +450,22 @@ bool PlaneSearch::replace_uncertainty_plane() {
   return true;
 }
 
+bool PlaneSearch::replace_with_population_plane() {
+  const Population& population = options_.population;
+  if (hold_ || options_.method != Method::kSps ||
+      options_.plane_axes != PlaneAxes::kTargetUncertainty || population.empty() ||
+      options_.perceptual_scale.size() != options_.dims || plane_.is_line()) {
+    return false;
+  }
+  auto plane = uncertainty_plane(plane_.c, population_covariance(population),
+                                 options_.perceptual_scale, options_.uncertainty_extent,
+                                 options_.uncertainty_min_lengths * options_.min_plane_length);
+  if (!plane) return false;
+  plane_ = *plane;
+  uncertainty_plane_ = false;
+  return true;
+}
+
 void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly) {
   last_choice_ = last_choice;
   last_set_directly_ = set_directly;

@@ -94,9 +94,13 @@ struct SearchOptions {
   // who cannot tell near neighbours apart (the window's cells, the benchmark's pixel person)
   // this finds the body sooner than the paper's expected improvement, which assumes a precise
   // chooser; a precise chooser is better served by the latter (docs/benchmarks.md).
+  // The smallest side is 2 lengths, not 3: with close-ups the smallest length is already
+  // what 2 px show of the framed band, and 3 kept the later planes too coarse for where the
+  // estimate had got to (pixel person at 230 px, 200 trials: mean gap at plane 10 down by
+  // 0.66 mm; 1, 1.5 and 2.5 lengths were between the two; 400 px unchanged).
   PlaneAxes plane_axes = PlaneAxes::kExpectedImprovement;
   double uncertainty_extent = 5.0;
-  double uncertainty_min_lengths = 3.0;
+  double uncertainty_min_lengths = 2.0;
 };
 
 // How large uncertainty planes are (SearchOptions::uncertainty_extent and
@@ -201,6 +205,13 @@ class PlaneSearch {
   // of what cells look like, e.g. a grid with no two cells visibly different), the paper's
   // plane for the same choice instead; returns whether the plane was replaced.
   bool replace_uncertainty_plane();
+  // The last resort after that, for the window's planes (PlaneAxes::kTargetUncertainty with a
+  // population): where the plane still cannot be told apart (the paper's plane, built where
+  // the estimate had no uncertainty plane, can be one whose cells clamp onto the same faces
+  // of the box), a plane through the same centre along the population's principal axes as a
+  // person sees them, slid and shrunk into the box as uncertainty planes are (the first
+  // plane's construction, moved to the centre). Returns whether the plane was replaced.
+  bool replace_with_population_plane();
   // Sets options().uncertainty_extent and uncertainty_min_lengths for the next planes. Throws
   // std::invalid_argument outside [0.1, 10] and [0, 10].
   void set_uncertainty_size(const UncertaintyPlaneSize& size);

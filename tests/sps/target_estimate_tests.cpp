@@ -481,3 +481,40 @@ TEST_CASE("an uncertainty plane the person cannot tell apart gives way to the pa
   CHECK_FALSE(search.replace_uncertainty_plane());
   CHECK_FALSE(paper.replace_uncertainty_plane());
 }
+
+TEST_CASE("a plane still not told apart gives way to the population's axes through its centre",
+          "[target][search]") {
+  sps::SearchOptions o = uncertainty_options(13);
+  sps::PlaneSearch search(o);
+  const sps::TargetModel m = model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  const Eigen::Vector3d goal(0.4, 0.6, 0.45);
+  search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
+  const sps::Plane before = search.current_plane();
+  REQUIRE(search.replace_with_population_plane());
+  const sps::Plane& after = search.current_plane();
+  // The same centre where the plane fits the box (it is slid only near a face), new axes:
+  // the population's covariance as a person sees it, its two longest axes, each at least the
+  // smallest side long and perpendicular as seen.
+  const auto seen = [&](const Eigen::VectorXd& a) { return a.cwiseProduct(o.perceptual_scale); };
+  CHECK((after.c - before.c).norm() < 0.5 * (after.u.norm() + after.v.norm()));
+  CHECK(((after.u - before.u).norm() > 1e-6 || (after.v - before.v).norm() > 1e-6));
+  CHECK(std::abs(seen(after.u).dot(seen(after.v))) <
+        1e-6 * seen(after.u).norm() * seen(after.v).norm());
+  CHECK(seen(after.u).norm() >= 0.999 * o.uncertainty_min_lengths * o.min_plane_length);
+  CHECK(seen(after.v).norm() >= 0.999 * o.uncertainty_min_lengths * o.min_plane_length);
+  // Only the window's planes have it: not the paper's axes, random planes, or a line.
+  o.plane_axes = sps::PlaneAxes::kExpectedImprovement;
+  sps::PlaneSearch paper(o);
+  paper.set_population(m.population);
+  CHECK_FALSE(paper.replace_with_population_plane());
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  o.method = sps::Method::kSpsRandom;
+  sps::PlaneSearch random(o);
+  random.set_population(m.population);
+  CHECK_FALSE(random.replace_with_population_plane());
+  // Without a population there are no axes to take.
+  o.method = sps::Method::kSps;
+  sps::PlaneSearch unknown(o);
+  CHECK_FALSE(unknown.replace_with_population_plane());
+}
