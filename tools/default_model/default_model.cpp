@@ -42,16 +42,10 @@ std::vector<int> vertices_where(const TriMesh& mesh, bool top) {
 // Vertex normals averaged over the mesh neighbourhood (a few centimetres): the bump fields
 // (belly, hips) push along them, and raw normals turn quickly in creases, where pushing along
 // them folds the surface.
-std::vector<std::vector<int>> vertex_neighbours(const TriMesh& mesh) {
-  std::vector<std::vector<int>> neighbours(mesh.vertices.size());
-  for (const auto& f : mesh.faces)
-    for (int a = 0; a < 3; ++a) neighbours[f[a]].push_back(f[(a + 1) % 3]);
-  return neighbours;  // a closed manifold: each edge once per direction, so both ends listed
-}
-
 std::vector<Vec3> smoothed_normals(const TriMesh& mesh, int iterations) {
   std::vector<Vec3> n = vertex_normals(mesh);
-  const std::vector<std::vector<int>> neighbours = vertex_neighbours(mesh);
+  const std::vector<std::vector<int>> neighbours =
+      neighbours_by_face(mesh.vertices.size(), mesh.faces);
   for (int it = 0; it < iterations; ++it) {
     std::vector<Vec3> next(n.size());
     for (std::size_t v = 0; v < n.size(); ++v) {
@@ -108,7 +102,7 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
                                       &tpl.correctives);
 
   DeformationModel deformation(mesh.vertices, smoothed_normals(mesh, 8), skeleton, deform_weights);
-  deformation.smooth_fields(vertex_neighbours(mesh), 36);
+  deformation.smooth_fields(neighbours_by_face(mesh.vertices.size(), mesh.faces), 36);
   const int P = deformation.parameter_count();
   std::vector<CalibrationReport> calibration;
   auto thetas = [&](bool female) {

@@ -397,6 +397,14 @@ void relax(TriMesh& mesh, const RemeshOptions& opt) {
 
 }  // namespace
 
+std::vector<std::vector<int>> neighbours_by_face(std::size_t vertex_count,
+                                                 const std::vector<std::array<int, 3>>& faces) {
+  std::vector<std::vector<int>> neighbours(vertex_count);
+  for (const auto& f : faces)
+    for (int a = 0; a < 3; ++a) neighbours[f[a]].push_back(f[(a + 1) % 3]);
+  return neighbours;
+}
+
 void remesh(TriMesh& mesh, const RemeshOptions& options) {
   split_long_edges(mesh, options);
   // Two rounds: the first collapse leaves edges that its checks refused next to slivers; after

@@ -38,6 +38,12 @@ void keep_largest_component(TriMesh& mesh);
 // Signed volume (positive when the faces wind counter-clockwise seen from outside).
 double signed_volume(const TriMesh& mesh);
 
+// Each vertex's neighbours in the order the faces list them (each face gives its corners the
+// next corner round it): on a closed manifold every edge appears once in each direction, so
+// both ends list each other once.
+std::vector<std::vector<int>> neighbours_by_face(std::size_t vertex_count,
+                                                 const std::vector<std::array<int, 3>>& faces);
+
 // Area-weighted vertex normals.
 std::vector<Eigen::Vector3d> vertex_normals(const TriMesh& mesh);
 

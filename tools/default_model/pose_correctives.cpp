@@ -318,18 +318,16 @@ struct SocketContact {
   static constexpr double kClear = 0.004;  // how far past the trunk's face the arm's skin ends
   static constexpr int kRounds = 8;
   static constexpr int kRings = 8;
-  std::vector<std::vector<int>> next;     // each vertex's neighbours
-  body::Faces near;                       // the faces near the joint
-  std::set<std::pair<int, int>> at_rest;  // pairs of `near` that already cross at rest
+  const std::vector<std::vector<int>>* next;  // each vertex's neighbours (one mesh: shared)
+  body::Faces near;                           // the faces near the joint
+  std::set<std::pair<int, int>> at_rest;      // pairs of `near` that already cross at rest
 
   SocketContact(const std::vector<Vec3>& P, const std::vector<std::array<int, 3>>& faces,
-                const Vec3& joint, double reach) {
-    const int V = static_cast<int>(P.size());
-    next.resize(V);
+                const std::vector<std::vector<int>>& neighbours, const Vec3& joint, double reach)
+      : next(&neighbours) {
     std::vector<int> picked;
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
       const auto& t = faces[f];
-      for (int k = 0; k < 3; ++k) next[t[k]].push_back(t[(k + 1) % 3]);
       if (((P[t[0]] + P[t[1]] + P[t[2]]) / 3.0 - joint).norm() < reach) picked.push_back(f);
     }
     near.resize(static_cast<Eigen::Index>(picked.size()), 3);
@@ -387,7 +385,7 @@ struct SocketContact {
         std::vector<int> next_ring = ring_of;
         for (std::size_t v = 0; v < X.size(); ++v) {
           if (where[v] < 0 || share[v] < 0.5) continue;
-          for (int w : next[v]) {
+          for (int w : (*next)[v]) {
             const double from_w = seed[w].norm() * reach(ring_of[w] + 1);
             if (ring_of[w] < kRings && from_w > next_seed[v].norm() * reach(next_ring[v])) {
               next_seed[v] = seed[w];
@@ -437,16 +435,20 @@ JointFit fit_joint(const std::vector<Vec3>& P, const SmplxRig& rig, const Eigen:
   const auto arm_reach = [&](const SmplxRig& r) {
     return 0.8 * (r.joints[limb_child(joint)] - r.joints[joint]).norm();
   };
+  const double reach_here = arm_reach(rig);
+  std::vector<std::vector<int>> neighbours;
   std::vector<SocketContact> trunks;
-  if (socket)
+  if (socket) {
+    neighbours = neighbours_by_face(P.size(), *faces);
     for (const ContactBody& b : *socket_bodies)
-      trunks.emplace_back(*b.rest, *faces, b.rig->joints[joint], arm_reach(*b.rig));
+      trunks.emplace_back(*b.rest, *faces, neighbours, b.rig->joints[joint], arm_reach(*b.rig));
+  }
   for (int v = 0; v < V; ++v) {
     const bool blend = share[v] > 0.005 && share[v] < 0.995;
     const bool near_limb = hinge && (C[v] - contact.centre).norm() < contact.reach &&
                            (share[v] >= 0.995 || weights(v, parent) > 0.5);
     const bool near_arm =
-        socket && share[v] >= 0.995 && (P[v] - rig.joints[joint]).norm() < arm_reach(rig);
+        socket && share[v] >= 0.995 && (P[v] - rig.joints[joint]).norm() < reach_here;
     if (blend || near_limb || near_arm) fit.zone.push_back(v);
   }
   const std::vector<Eigen::Matrix3d> rotations = joint_rotations(joint, rig);
