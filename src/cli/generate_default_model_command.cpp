@@ -106,8 +106,9 @@ int run(int argc, char** argv) {
            "          [--population N] [--components K] [--seed S] [--quiet]\n"
            "          [--calibration-rounds R] [--calibration-sample N]\n\n"
            "Builds the default body models female, male and neutral: one template mannequin\n"
-           "(implicit surface, marching tetrahedra, remeshing) with SMPL's 24-joint rig, a\n"
-           "population per sex from ANSUR II survey statistics, and the PCA shape space of\n"
+           "(implicit surface, marching tetrahedra, remeshing) with SMPL-X's 55-joint rig,\n"
+           "skin weights, pose correctives and a UV layout, a population per sex from\n"
+           "ANSUR II survey statistics, and the PCA shape space of\n"
            "each (neutral: both populations together; betas ~ N(0, 1)). Writes SMPL-layout\n"
            "files DIR/body_{female,male,neutral}.npz (DIR default: assets). --check compares\n"
            "with the existing files instead (every array within 1e-5; exit 1 if not).\n";
