@@ -325,14 +325,8 @@ bool PlaneSearch::visible_start(Plane& plane) const {
   // sees them, its principal axes, as the later uncertainty planes span the estimate's. With
   // independent coordinates those are the most visible coordinates, which
   // visible_first_plane takes at the extent measured for bodies.
-  const Population& population = options_.population;
-  if (!hold_ && options_.method == Method::kSps &&
-      options_.plane_axes == PlaneAxes::kTargetUncertainty && !population.empty() &&
-      population.correlation.size() > 0) {
-    if (auto first =
-            uncertainty_plane(population.mean, population_covariance(population),
-                              options_.perceptual_scale, options_.uncertainty_extent,
-                              options_.uncertainty_min_lengths * options_.min_plane_length)) {
+  if (options_.population.correlation.size() > 0) {
+    if (auto first = population_plane(options_.population.mean)) {
       plane = *first;
       return true;
     }
@@ -450,16 +444,21 @@ bool PlaneSearch::replace_uncertainty_plane() {
   return true;
 }
 
-bool PlaneSearch::replace_with_population_plane() {
+std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) const {
   const Population& population = options_.population;
   if (hold_ || options_.method != Method::kSps ||
       options_.plane_axes != PlaneAxes::kTargetUncertainty || population.empty() ||
-      options_.perceptual_scale.size() != options_.dims || plane_.is_line()) {
-    return false;
+      options_.perceptual_scale.size() != options_.dims) {
+    return std::nullopt;
   }
-  auto plane = uncertainty_plane(plane_.c, population_covariance(population),
-                                 options_.perceptual_scale, options_.uncertainty_extent,
-                                 options_.uncertainty_min_lengths * options_.min_plane_length);
+  return uncertainty_plane(c, population_covariance(population), options_.perceptual_scale,
+                           options_.uncertainty_extent,
+                           options_.uncertainty_min_lengths * options_.min_plane_length);
+}
+
+bool PlaneSearch::replace_with_population_plane() {
+  if (plane_.is_line()) return false;
+  auto plane = population_plane(plane_.c);
   if (!plane) return false;
   plane_ = *plane;
   uncertainty_plane_ = false;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -245,6 +246,11 @@ class PlaneSearch {
   // The first plane for the current options and hold (visible_first_plane or
   // held_first_plane), or false when there is no perceptual scale.
   bool visible_start(Plane& plane) const;
+  // The plane through c along the population's principal axes as a person sees them (sized
+  // like the uncertainty planes), for the window's planes (SPS, PlaneAxes::kTargetUncertainty,
+  // a population and a perceptual scale, no hold); nullopt otherwise or where no plane of
+  // told-apart cells fits.
+  std::optional<Plane> population_plane(const Eigen::VectorXd& c) const;
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 
