@@ -96,6 +96,9 @@ class SpacePerception {
   virtual ZoomPolicy zoom_policy(int cell_px) const = 0;
   // Empty: no per-coordinate scale.
   virtual Eigen::VectorXd perceptual_scale() const = 0;
+  // With perceptual_scale(): empty where the coordinates are seen independently, else the full
+  // metric whose diagonal is the scale squared (sps::SearchOptions::perceptual_metric).
+  virtual Eigen::MatrixXd perceptual_metric() const { return {}; }
   // With perceptual_scale(): the smallest length of a plane's sides in its units when the
   // cells are `cell_px` pixels high (0: not known yet), so that a grid can hold cells that all
   // look different; 0 keeps the optimizer's default (sps::SearchOptions::min_plane_length).

@@ -25,6 +25,24 @@ struct Overloaded : F... {
 template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
+// The space's full perceptual metric where it has one that fits `scale` (its diagonal the
+// scale squared, to 0.1%: a session saved on another model keeps its own scale alone); else
+// empty, the scale alone.
+Eigen::MatrixXd usable_metric(const SpacePerception& perception, const Eigen::VectorXd& scale) {
+  Eigen::MatrixXd metric = perception.perceptual_metric();
+  if (metric.rows() != scale.size() || metric.cols() != scale.size() || !metric.allFinite()) {
+    return {};
+  }
+  const Eigen::ArrayXd ratio = metric.diagonal().array() / scale.array().square();
+  if ((ratio - 1.0).abs().maxCoeff() > 1e-3) return {};
+  try {
+    sps::validate_metric_matrix(metric, scale.size(), "the space's perceptual metric");
+  } catch (const std::invalid_argument&) {
+    return {};
+  }
+  return metric;
+}
+
 SessionSettings session_settings(const SpaceSettings& space, int grid_size, int zoom_levels,
                                  std::uint64_t seed) {
   SessionSettings s;
@@ -592,7 +610,7 @@ void GalleryController::install_perception() {
     const Eigen::VectorXd scale = perception->perceptual_scale();
     if (scale.size() == session_->settings().components && scale.allFinite() &&
         (scale.array() > 0.0).all()) {
-      session_->set_perceptual_scale(scale);
+      session_->set_perceptual_scale(scale, usable_metric(*perception, scale));
       if (const double length = perception->min_plane_length(cell_pixels_); length > 0.0) {
         session_->set_min_plane_length(length);
       }
@@ -602,6 +620,13 @@ void GalleryController::install_perception() {
       session_->set_uncertainty_size(perception->uncertainty_size());
       session_->set_plane_axes(perception->plane_axes());
     }
+  }
+  // Sessions saved before the full metric see the coordinates independently; their later
+  // estimates and planes measure in it too (it only reads the saved choices and scale).
+  if (const sps::SearchOptions& saved = session_->search().options();
+      saved.perceptual_scale.size() > 0 && saved.perceptual_metric.size() == 0) {
+    const Eigen::MatrixXd metric = usable_metric(*perception, saved.perceptual_scale);
+    if (metric.size() > 0) session_->set_perceptual_scale(saved.perceptual_scale, metric);
   }
   // Sessions saved before the target estimate existed have a scale but no population: their
   // later planes are centred on the estimate too (it only reads the saved choices).

@@ -246,8 +246,9 @@ Session::Session(const SessionSettings& settings, sps::SearchOptions options)
   update_views();
 }
 
-void Session::set_perceptual_scale(const Eigen::VectorXd& mm_per_unit) {
-  search_.set_perceptual_scale(mm_per_unit);
+void Session::set_perceptual_scale(const Eigen::VectorXd& mm_per_unit,
+                                   const Eigen::MatrixXd& metric) {
+  search_.set_perceptual_scale(mm_per_unit, metric);
   if (path_.empty() && history_.empty() && search_.use_visible_first_plane()) {
     start_point_ = search_.current_plane().c;
   }

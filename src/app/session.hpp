@@ -134,8 +134,10 @@ class Session {
   // body::ShapeDistance::direction_rms_mm()); the optimizer scales its length scales and
   // shapes its planes with it from the next plane on (saved with the search). Empty: none.
   // Before the first click of a new session it also starts from the plane of the two most
-  // visible directions (sps::visible_first_plane).
-  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit);
+  // visible directions (sps::visible_first_plane). `metric`: empty, or the full perceptual
+  // metric (sps::SearchOptions::perceptual_metric, mm^2), saved with the search too.
+  void set_perceptual_scale(const Eigen::VectorXd& mm_per_unit,
+                            const Eigen::MatrixXd& metric = Eigen::MatrixXd());
   // Where the space's designs typically lie (e.g. SpacePerception::population()); with a
   // perceptual scale the planes are then centred on the estimate of the design the person has
   // in mind (sps::SearchOptions::population), from the next plane on (saved with the search).

@@ -174,4 +174,10 @@ Eigen::VectorXd ShapeDistance::direction_rms_mm() const {
   return out;
 }
 
+Eigen::MatrixXd ShapeDistance::direction_gram_mm2() const {
+  const Eigen::MatrixXd dirs = unit_dirs_mm_.cast<double>();
+  Eigen::MatrixXd gram = dirs.transpose() * dirs / static_cast<double>(vertex_count());
+  return 0.5 * (gram + gram.transpose());
+}
+
 }  // namespace body

@@ -52,6 +52,11 @@ class ShapeDistance {
   // How much each search coordinate changes the body over its whole range [0, 1]: RMS vertex
   // displacement in mm (the perceptual scale of each direction).
   Eigen::VectorXd direction_rms_mm() const;
+  // The RMS vertex distance between two bodies as a quadratic form of their search
+  // coordinates: rms(x - y)^2 = (x - y)^T G (x - y), mm^2 (sps::PerceptualMetric). Its
+  // diagonal is direction_rms_mm() squared; off the diagonal, how much two directions move the
+  // same vertices the same way (none for components that are orthogonal in vertex space).
+  Eigen::MatrixXd direction_gram_mm2() const;
 
  private:
   // `distance` of each body to the body with the given betas.

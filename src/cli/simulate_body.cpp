@@ -118,6 +118,7 @@ int run_body_simulation(const ArgParser& args) {
                               "no-adapt",
                               "distinct-mm",
                               "no-perceptual-scale",
+                              "diagonal-metric",
                               "min-plane-mm",
                               "no-perceptual-ls",
                               "perceptual-btl",
@@ -162,6 +163,7 @@ int run_body_simulation(const ArgParser& args) {
   const bool quiet = args.has("quiet");
   const bool adapt = !args.has("no-adapt");
   const bool perceptual_scale = !args.has("no-perceptual-scale");
+  const bool full_metric = perceptual_scale && !args.has("diagonal-metric");
   app::ZoomPolicy policy =
       pixel_person ? app::zoom_policy_for_cells(cell_px, jnd_px) : app::ZoomPolicy{};
   policy.distinct_mm = args.get_double("distinct-mm", policy.distinct_mm);
@@ -288,7 +290,9 @@ int run_body_simulation(const ArgParser& args) {
           spaces::make_body_holds(hold_model, holds, session.current_best()), clock));
     }
     if (perceptual_scale) {
-      session.set_perceptual_scale(distance.direction_rms_mm());
+      session.set_perceptual_scale(distance.direction_rms_mm(), full_metric
+                                                                    ? distance.direction_gram_mm2()
+                                                                    : Eigen::MatrixXd());
       if (target_model) session.set_population(spaces::body_population(k));
     }
     if (adapt) session.set_perceptual_distance(pairwise, policy);
@@ -315,6 +319,7 @@ int run_body_simulation(const ArgParser& args) {
   }
   title << (adapt ? "" : ", no zoom adaptation")
         << (perceptual_scale ? "" : ", no perceptual scale")
+        << (perceptual_scale && !full_metric ? ", diagonal metric" : "")
         << (perceptual_scale && !target_model ? ", no target model" : "") << "), target "
         << (fixed_target.size() > 0 ? "fixed" : "random") << ", " << trials << " trials, seeds "
         << seed << "-" << (seed + trials - 1) << "; gap = RMS vertex distance (mm) of the best "

@@ -82,6 +82,8 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --no-adapt          do not give the session the perceptual distance (fixed factor-2 zoom)
   --distinct-mm D     the session's smallest difference between cells (default 10)
   --no-perceptual-scale  do not tell the optimizer how much each direction changes the body
+  --diagonal-metric   tell it one scale per direction only, not how directions overlap (the
+                      RMS vertex distance's Gram matrix, which the window gives it)
   --min-plane-mm L    with the perceptual scale: smallest RMS length of u and v (default 12)
   --no-perceptual-ls  do not scale the length-scale priors by it
   --no-mean-centre    centre planes on the best observed point, not the posterior-mean maximum
@@ -125,7 +127,7 @@ functions:
 int run(int argc, char** argv) {
   const cli::ArgParser args(argc, argv,
                             {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale",
-                             "no-perceptual-ls", "no-mean-centre", "no-target-model"},
+                             "diagonal-metric", "no-perceptual-ls", "no-mean-centre", "no-target-model"},
                             {"target-betas"});
   if (args.has("help")) {
     print_help();

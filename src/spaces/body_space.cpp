@@ -135,6 +135,10 @@ Eigen::VectorXd BodySpace::perceptual_scale() const {
   return framed_->distance().direction_rms_mm();
 }
 
+Eigen::MatrixXd BodySpace::perceptual_metric() const {
+  return framed_->distance().direction_gram_mm2();
+}
+
 sps::Population body_population(int components) {
   // SMPL-family shape coefficients are standardized: beta ~ N(0, 1) over the people the model
   // was built from, and a search point maps beta = 6x - 3 (+-3 SD), so x ~ N(1/2, (1/6)^2).

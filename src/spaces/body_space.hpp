@@ -80,6 +80,10 @@ class BodySpace : public app::DesignSpace,
   // estimate of the body in mind is least certain (docs/benchmarks.md, the pixel person).
   sps::PlaneAxes plane_axes() const override { return sps::PlaneAxes::kTargetUncertainty; }
   Eigen::VectorXd perceptual_scale() const override;
+  // The RMS vertex distance's Gram matrix (body::ShapeDistance::direction_gram_mm2): a model's
+  // components need not be orthogonal in vertex space (the built-in ones are turned so that
+  // component 1 carries stature and component 2 mass).
+  Eigen::MatrixXd perceptual_metric() const override;
   sps::Population population() const override;
 
   const body::Model& model() const { return model_; }

@@ -363,7 +363,7 @@ namespace {
 
 // The smallest perceptual distance between two cells of the coarsest 3x3 grid of the plane
 // with both half-diagonals scaled by `factor`, each cell clamped into the box as shown.
-double closest_clamped_cells(const Plane& p, const Eigen::VectorXd& scale, double factor) {
+double closest_clamped_cells(const Plane& p, const PerceptualMetric& metric, double factor) {
   std::vector<Eigen::VectorXd> cells;
   for (int s = -1; s <= 1; ++s) {
     for (int t = -1; t <= 1; ++t) {
@@ -374,7 +374,7 @@ double closest_clamped_cells(const Plane& p, const Eigen::VectorXd& scale, doubl
   double closest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     for (std::size_t j = i + 1; j < cells.size(); ++j) {
-      closest = std::min(closest, (cells[i] - cells[j]).cwiseProduct(scale).norm());
+      closest = std::min(closest, metric.length(cells[i] - cells[j]));
     }
   }
   return closest;
@@ -383,20 +383,19 @@ double closest_clamped_cells(const Plane& p, const Eigen::VectorXd& scale, doubl
 }  // namespace
 
 std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
-                                       const Eigen::VectorXd& scale, double extent,
+                                       const PerceptualMetric& metric, double extent,
                                        double min_length) {
   const Eigen::Index d = c.size();
-  if (covariance.rows() != d || covariance.cols() != d || scale.size() != d) {
-    throw std::invalid_argument("uncertainty_plane: the covariance and scale need " +
+  if (covariance.rows() != d || covariance.cols() != d || metric.dims() != d) {
+    throw std::invalid_argument("uncertainty_plane: the covariance and metric need " +
                                 std::to_string(d) + " rows");
   }
-  // The covariance as a person sees it: of S x, with S the perceptual scale.
-  const Eigen::MatrixXd seen = scale.asDiagonal() * covariance * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(seen);
+  // The covariance as a person sees it: of R x, with R^T R the perceptual metric.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(metric.seen_covariance(covariance));
   const auto axis = [&](Eigen::Index i) {
     const double length =
         std::max(min_length, extent * std::sqrt(std::max(0.0, eigen.eigenvalues()(i))));
-    Eigen::VectorXd a = eigen.eigenvectors().col(i).cwiseQuotient(scale) * length;
+    Eigen::VectorXd a = metric.unseen(eigen.eigenvectors().col(i)) * length;
     // No further than twice across the box along any coordinate: the rest would be clamped.
     const double widest = a.cwiseAbs().maxCoeff();
     if (widest > kMaxUncertaintyAxis) a *= kMaxUncertaintyAxis / widest;
@@ -414,7 +413,7 @@ std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::Ma
   // box's chord where it is narrower; and the plane is shrunk until cells are at least half
   // of min_length apart (none when no shrinking gets them there).
   const double apart = 0.5 * min_length;
-  if (closest_clamped_cells(p, scale, 1.0) < apart) {
+  if (closest_clamped_cells(p, metric, 1.0) < apart) {
     for (Eigen::VectorXd* a : {&p.u, &p.v}) {
       if (a->norm() < 1e-12) continue;
       const double ahead = room_along(p.c, *a), behind = room_along(p.c, -*a);
@@ -423,9 +422,9 @@ std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::Ma
              *a;
     }
   }
-  double best_factor = 1.0, best_apart = closest_clamped_cells(p, scale, 1.0);
+  double best_factor = 1.0, best_apart = closest_clamped_cells(p, metric, 1.0);
   for (double factor = 0.85; best_apart < apart && factor > 0.05; factor *= 0.85) {
-    const double closest = closest_clamped_cells(p, scale, factor);
+    const double closest = closest_clamped_cells(p, metric, factor);
     if (closest > best_apart) {
       best_apart = closest;
       best_factor = factor;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "sps/perceptual_metric.hpp"
 #include "sps/plane.hpp"
 #include "sps/preference_model.hpp"
 #include "sps/tangent_space.hpp"
@@ -87,14 +88,14 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
 Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
 
 // The plane through c along the directions in which the estimate of the design in mind is
-// least certain as a person sees them: the principal axes of `covariance` (box units) in the
-// perceptual metric of `scale`, each half-diagonal `extent` standard deviations long and at
+// least certain as a person sees them: the principal axes of `covariance` (box units) in
+// `metric`, each half-diagonal `extent` standard deviations long and at
 // least `min_length` (perceptual units). Like random planes it may reach beyond the box (its
 // cells are clamped when shown), shrunk until the cells of its first 3x3 grid, clamped, are
 // half of min_length apart where it can be; none where even the best shrink leaves two cells
 // closer than a third of min_length (the caller builds another kind of plane).
 std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
-                                       const Eigen::VectorXd& scale, double extent,
+                                       const PerceptualMetric& metric, double extent,
                                        double min_length);
 
 // Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.

@@ -139,6 +139,10 @@ void validate_options(const SearchOptions& o) {
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
+  require(o.perceptual_metric.size() == 0 ||
+              (o.perceptual_scale.size() == o.dims && o.perceptual_metric.rows() == o.dims &&
+               o.perceptual_metric.cols() == o.dims),
+          "the perceptual metric needs a perceptual scale and dims x dims entries");
   require(o.population.correlation.size() == 0 || (o.population.correlation.rows() == o.dims &&
                                                    o.population.correlation.cols() == o.dims),
           "the population correlation needs dims x dims entries");
@@ -207,7 +211,8 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
       plain_btl_scale_(options.model.btl_scale) {
   plane_ = first_plane(options_.dims, rng_);
   const Eigen::VectorXd scale = options_.perceptual_scale;
-  set_perceptual_scale(scale);
+  const Eigen::MatrixXd metric = options_.perceptual_metric;
+  set_perceptual_scale(scale, metric);
   const Population population = options_.population;
   set_population(population);
 }
@@ -216,7 +221,8 @@ void PlaneSearch::set_population(const Population& population) {
   // The perceptual scale may come later: a unit scale stands in for it here.
   if (!population.empty()) {
     validate_target_model(
-        {Eigen::VectorXd::Ones(options_.dims), population, options_.choice_temperature_mm},
+        {Eigen::VectorXd::Ones(options_.dims), population, options_.choice_temperature_mm,
+         Eigen::MatrixXd()},
         options_.dims);
   }
   options_.population = population;
@@ -247,9 +253,11 @@ void PlaneSearch::set_uncertainty_size(const UncertaintyPlaneSize& size) {
   options_.uncertainty_min_lengths = size.min_lengths;
 }
 
-void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
+void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale,
+                                       const Eigen::MatrixXd& metric) {
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);
+    options_.perceptual_metric.resize(0, 0);
     options_.model.length_scale_factors.resize(0);
     options_.model.btl_scale = plain_btl_scale_;
     return;
@@ -258,7 +266,9 @@ void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale) {
     throw std::invalid_argument("the perceptual scale needs " + std::to_string(options_.dims) +
                                 " positive finite entries");
   }
+  validate_metric_matrix(metric, options_.dims, "the perceptual metric");
   options_.perceptual_scale = scale;
+  options_.perceptual_metric = metric;
   options_.model.btl_scale = options_.perceptual_btl_scale;
   // Relative to the geometric mean, so the overall prior is unchanged; limited to a factor of
   // 16 either way so that no direction is frozen or ignored entirely (the default body
@@ -451,9 +461,13 @@ std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) con
       options_.perceptual_scale.size() != options_.dims) {
     return std::nullopt;
   }
-  return uncertainty_plane(c, population_covariance(population), options_.perceptual_scale,
+  return uncertainty_plane(c, population_covariance(population), metric(),
                            options_.uncertainty_extent,
                            options_.uncertainty_min_lengths * options_.min_plane_length);
+}
+
+PerceptualMetric PlaneSearch::metric() const {
+  return PerceptualMetric(options_.perceptual_scale, options_.perceptual_metric);
 }
 
 bool PlaneSearch::replace_with_population_plane() {
@@ -480,7 +494,8 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   // Empty scale: no estimate of the design in mind (no population, or not centring on it).
   const TargetModel target = mean_centre && !options_.population.empty()
                                  ? TargetModel{options_.perceptual_scale, options_.population,
-                                               options_.choice_temperature_mm}
+                                               options_.choice_temperature_mm,
+                                               options_.perceptual_metric}
                                  : TargetModel{};
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
@@ -511,7 +526,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     // visible directions), the paper's plane, built inside the box.
     if (auto plane =
             uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus),
-                              options_.perceptual_scale, options_.uncertainty_extent,
+                              metric(), options_.uncertainty_extent,
                               options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane_ = *plane;
       uncertainty_plane_ = true;
@@ -614,6 +629,12 @@ std::string PlaneSearch::to_json() const {
                     {"max_points", m.max_points}}}};
   if (options_.perceptual_scale.size() > 0) {
     j["options"]["perceptual_scale"] = vec_to_json(options_.perceptual_scale);
+    if (options_.perceptual_metric.size() > 0) {
+      // Row by row, dims x dims entries.
+      const Eigen::MatrixXd rows = options_.perceptual_metric.transpose();
+      j["options"]["perceptual_metric"] =
+          vec_to_json(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
+    }
     j["options"]["min_plane_length"] = options_.min_plane_length;
     j["options"]["perceptual_length_scales"] = options_.perceptual_length_scales;
     j["options"]["centre_on_mean_maximum"] = options_.centre_on_mean_maximum;
@@ -717,6 +738,16 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
     if (o.contains("perceptual_scale")) {
       options.perceptual_scale =
           vec_from_json(o.at("perceptual_scale"), "perceptual_scale", options.dims, 1e-9, 1e9);
+      // Files from before the full metric see the coordinates independently. Symmetry and
+      // definiteness are checked with the scale (set_perceptual_scale).
+      if (o.contains("perceptual_metric")) {
+        const Eigen::VectorXd entries =
+            vec_from_json(o.at("perceptual_metric"), "perceptual_metric",
+                          static_cast<Eigen::Index>(options.dims) * options.dims, -1e18, 1e18);
+        options.perceptual_metric =
+            Eigen::Map<const Eigen::MatrixXd>(entries.data(), options.dims, options.dims)
+                .transpose();
+      }
       if (o.contains("min_plane_length")) {
         options.min_plane_length =
             double_from_json(o.at("min_plane_length"), "min_plane_length", 0.0, 1e4);

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "sps/held_search.hpp"
+#include "sps/perceptual_metric.hpp"
 #include "sps/plane.hpp"
 #include "sps/preference_data.hpp"
 #include "sps/preference_model.hpp"
@@ -59,6 +60,13 @@ struct SearchOptions {
   // near a bound becomes a corner of the plane instead of a fold, and v is not left much
   // shorter than u (in these units), using only coordinates with room on both sides.
   Eigen::VectorXd perceptual_scale;
+  // Empty, or with a perceptual scale the full perceptual metric (sps/perceptual_metric.hpp;
+  // its diagonal is the scale squared) for coordinates that are not seen independently: the
+  // estimate of the design in mind and the uncertainty planes measure in it (the built-in body
+  // models, whose components 1 and 2 are turned to carry stature and mass: mean gap at plane
+  // 10 9.19 -> 6.69 mm with it, docs/benchmarks.md). The rest of the plane construction keeps
+  // the scale.
+  Eigen::MatrixXd perceptual_metric;
   // With a perceptual scale: the smallest length of u and of v in its units (the plane's
   // half-diagonals; RMS mm for a body model: 12 and 20 measured alike, 30 worse), so
   // that a plane always shows differences a person can see; and whether the length-scale
@@ -182,9 +190,12 @@ class PlaneSearch {
   std::string to_json() const;
   static PlaneSearch from_json(const std::string& json_text);
 
-  // Sets options().perceptual_scale (empty: none) for the next submissions. Throws
-  // std::invalid_argument on a wrong size or a non-positive or non-finite entry.
-  void set_perceptual_scale(const Eigen::VectorXd& scale);
+  // Sets options().perceptual_scale (empty: none) and perceptual_metric (empty: the scale
+  // alone; ignored without a scale) for the next submissions. Throws std::invalid_argument on
+  // a wrong size, a non-positive or non-finite scale entry, or a metric that
+  // validate_metric_matrix refuses; nothing changes then.
+  void set_perceptual_scale(const Eigen::VectorXd& scale,
+                            const Eigen::MatrixXd& metric = Eigen::MatrixXd());
   // Before the first submission and with a perceptual scale: replaces the current plane by
   // visible_first_plane() and returns true (start_over() then starts from it too); otherwise
   // false and nothing changes.
@@ -251,6 +262,8 @@ class PlaneSearch {
   // a population and a perceptual scale, no hold); nullopt otherwise or where no plane of
   // told-apart cells fits.
   std::optional<Plane> population_plane(const Eigen::VectorXd& c) const;
+  // The perceptual scale with the full metric where there is one; assumes a scale.
+  PerceptualMetric metric() const;
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 

@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "sps/bounded_maximizer.hpp"
+#include "sps/perceptual_metric.hpp"
 
 namespace sps {
 
@@ -52,6 +53,11 @@ void validate_target_model(const TargetModel& model, int dims) {
   require(std::isfinite(model.temperature_mm) && model.temperature_mm > 0.0 &&
               model.temperature_mm <= 1e4,
           "the choice temperature must lie in (0, 10000] mm");
+  try {
+    validate_metric_matrix(model.metric, n, "the perceptual metric");
+  } catch (const std::invalid_argument& e) {
+    require(false, e.what());
+  }
 }
 
 Eigen::MatrixXd population_covariance(const Population& population) {
@@ -82,11 +88,13 @@ PointUtilities point_utilities(const PreferenceData& data, const TargetModel& mo
                                const Eigen::VectorXd& t) {
   const Eigen::MatrixXd& points = data.points();
   const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
+  const bool full = model.metric.size() > 0;
   const double inv_temp = 1.0 / model.temperature_mm;
   PointUtilities u{Eigen::VectorXd(points.cols()), Eigen::MatrixXd(t.size(), points.cols())};
   for (Eigen::Index i = 0; i < points.cols(); ++i) {
     const Eigen::VectorXd diff = points.col(i) - t;
-    const Eigen::VectorXd weighted = s2.cwiseProduct(diff);
+    const Eigen::VectorXd weighted =
+        full ? Eigen::VectorXd(model.metric * diff) : Eigen::VectorXd(s2.cwiseProduct(diff));
     const double distance = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
     u.value(i) = -distance * inv_temp;
     u.gradient.col(i) = weighted * (inv_temp / distance);

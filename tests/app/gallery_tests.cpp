@@ -843,6 +843,12 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
     const Eigen::VectorXd scale = c.session().search().options().perceptual_scale;
     REQUIRE(scale.size() == c.session().settings().components);
     CHECK(scale.minCoeff() > 1.0);  // mm over the range: every component visibly moves
+    // And how the components overlap (the built-in ones are turned to carry stature and
+    // mass): the RMS vertex distance's Gram matrix, whose diagonal is the scale squared.
+    const Eigen::MatrixXd metric = c.session().search().options().perceptual_metric;
+    REQUIRE(metric.rows() == scale.size());
+    CHECK((metric.diagonal().cwiseSqrt() - scale).cwiseAbs().maxCoeff() < 1e-4 * scale.maxCoeff());
+    CHECK((metric - c.space().perception()->perceptual_metric()).norm() < 1e-9 * metric.norm());
     // No grid the window shows holds two look-alike cells.
     const auto cells = c.session().cells();
     std::vector<Eigen::VectorXd> xs;
@@ -858,19 +864,21 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
     c.begin_frame(0.0);
   }
   {
-    // A file saved before the target estimate existed has no population: take it out.
+    // A file saved before the target estimate existed has no population, and one saved before
+    // the full metric none of that: take them out.
     nlohmann::json saved;
     std::ifstream(session) >> saved;
     int removed = 0;
     const auto strip = [&removed](nlohmann::json& node, const auto& self) -> void {
       if (!node.is_object() && !node.is_array()) return;
       if (node.is_object()) {
-        removed += static_cast<int>(node.erase("population_mean") + node.erase("population_sd"));
+        removed += static_cast<int>(node.erase("population_mean") + node.erase("population_sd") +
+                                    node.erase("perceptual_metric"));
       }
       for (auto& child : node) self(child, self);
     };
     strip(saved, strip);
-    REQUIRE(removed == 2);
+    REQUIRE(removed == 3);
     std::ofstream(session) << saved.dump();
   }
   app::ControllerOptions resumed = options(session, "body");
@@ -878,14 +886,17 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
   GalleryController c(resumed, &spaces::open_space, 0.0);
   CHECK(c.session().clicks_on_plane() == 1);
   CHECK(c.session().has_perceptual_distance());
-  // Resumed, it is centred on the estimate too from its next plane on.
+  // Resumed, it is centred on the estimate too from its next plane on, in the full metric.
   CHECK(c.session().search().options().population.mean.size() == c.session().settings().components);
+  CHECK(c.session().search().options().perceptual_metric.rows() ==
+        c.session().settings().components);
   // The photo space has its own, in colour differences: no two cells within one JND.
   c.queue(intent::Open{spaces::default_settings("photo"), 0, 4});
   c.begin_frame(0.1);
   CHECK(c.session().has_perceptual_distance());
   CHECK(c.session().zoom_policy().look_alike_mm == Approx(spaces::kPhotoDistinctDeltaE));
   CHECK(c.session().search().options().perceptual_scale.size() == 12);
+  CHECK(c.session().search().options().perceptual_metric.size() == 0);  // seen independently
   CHECK(c.session().search().options().min_plane_length == Approx(spaces::kPhotoMinPlaneDeltaE));
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -258,7 +259,7 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
   // 0.04*400 = 16: the most uncertain look is along coordinate 2, then 0.
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.001, 0.04).asDiagonal();
   const Eigen::Vector3d c = Eigen::Vector3d::Constant(0.5);
-  const auto made = sps::uncertainty_plane(c, cov, scale, 2.0, 1.0);
+  const auto made = sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 1.0);
   REQUIRE(made);
   const sps::Plane& p = *made;
   CHECK((p.c - c).norm() < 1e-12);
@@ -269,7 +270,7 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
   CHECK(p.u.cwiseProduct(scale).norm() == Approx(2.0 * 4.0));  // 2 SD of sqrt(16)
   CHECK(p.v.cwiseProduct(scale).norm() == Approx(2.0 * 3.0));  // 2 SD of sqrt(9)
   // Never shorter than the smallest length.
-  const sps::Plane longer = *sps::uncertainty_plane(c, cov, scale, 2.0, 12.0);
+  const sps::Plane longer = *sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 12.0);
   CHECK(longer.u.cwiseProduct(scale).norm() == Approx(12.0));
   CHECK(longer.v.cwiseProduct(scale).norm() == Approx(12.0));
 }
@@ -281,7 +282,7 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.09, 0.04, 0.0001).asDiagonal();
   const Eigen::Vector3d c(0.02, 0.5, 0.5);
   const double min_length = 20.0;
-  const auto made = sps::uncertainty_plane(c, cov, scale, 3.0, min_length);
+  const auto made = sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 3.0, min_length);
   REQUIRE(made);
   const sps::Plane& p = *made;
   // Clamped as the window shows them, no two cells of the first 3x3 grid coincide.
@@ -299,7 +300,7 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   }
   CHECK(closest >= 0.5 * min_length);
   // Where the whole box shows less than that (1 mm per unit), there is no such plane.
-  CHECK_FALSE(sps::uncertainty_plane(c, cov, Eigen::Vector3d::Ones(), 3.0, min_length));
+  CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(Eigen::Vector3d::Ones()), 3.0, min_length));
   // The estimate is still on the plane: c + a u + b v for some a, b.
   Eigen::Matrix<double, 3, 2> axes;
   axes << p.u, p.v;
@@ -517,4 +518,152 @@ TEST_CASE("a plane still not told apart gives way to the population's axes throu
   o.method = sps::Method::kSps;
   sps::PlaneSearch unknown(o);
   CHECK_FALSE(unknown.replace_with_population_plane());
+}
+
+namespace {
+
+// Coordinates 0 and 1 move much of the same (as the built-in body models' turned components
+// 1 and 2 do), coordinate 2 on its own: the metric M = A^T A of the columns of A (mm^2).
+Eigen::Matrix3d overlapping_metric() {
+  Eigen::Matrix3d a;
+  a << 90.0, 70.0, 0.0,  //
+      20.0, 45.0, 0.0,   //
+      0.0, 0.0, 40.0;
+  return a.transpose() * a;
+}
+
+double metric_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::MatrixXd& m) {
+  const Eigen::VectorXd d = a - b;
+  return std::sqrt(d.dot(m * d));
+}
+
+// A careful chooser who sees in the full metric: of nine random points, the one nearest the
+// target in it.
+sps::PreferenceData careful_metric_choices(const Eigen::VectorXd& target,
+                                           const Eigen::MatrixXd& m, int grids,
+                                           std::mt19937_64& rng) {
+  const Eigen::Index d = target.size();
+  sps::PreferenceData data(static_cast<int>(d));
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int g = 0; g < grids; ++g) {
+    std::vector<Eigen::VectorXd> shown;
+    std::size_t best = 0;
+    for (std::size_t k = 0; k < 9; ++k) {
+      Eigen::VectorXd x(d);
+      for (Eigen::Index i = 0; i < d; ++i) x(i) = uniform(rng);
+      shown.push_back(x);
+      if (metric_mm(x, target, m) < metric_mm(shown[best], target, m)) best = k;
+    }
+    std::vector<Eigen::VectorXd> others;
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      if (k != best) others.push_back(shown[k]);
+    }
+    data.add_preference(shown[best], others);
+  }
+  return data;
+}
+
+}  // namespace
+
+TEST_CASE("with a full metric the target log posterior's gradient matches finite differences",
+          "[target][metric]") {
+  const Eigen::Matrix3d m = overlapping_metric();
+  sps::TargetModel model = model_for(m.diagonal().cwiseSqrt());
+  model.metric = m;
+  CHECK_NOTHROW(sps::validate_target_model(model, 3));
+  std::mt19937_64 rng(5);
+  const sps::PreferenceData data =
+      careful_metric_choices(Eigen::Vector3d(0.3, 0.7, 0.4), m, 12, rng);
+  for (const Eigen::Vector3d& t : {Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(0.2, 0.8, 0.6)}) {
+    check_gradient(data, model, t);
+  }
+  // And it is not the diagonal's: the off-diagonal entries change the value.
+  sps::TargetModel diagonal = model;
+  diagonal.metric.resize(0, 0);
+  const Eigen::Vector3d t(0.2, 0.8, 0.6);
+  CHECK(std::abs(sps::target_log_posterior(data, model, t) -
+                 sps::target_log_posterior(data, diagonal, t)) > 0.1);
+  // A metric the model cannot use is refused by name.
+  model.metric(0, 1) += 500.0;
+  CHECK_THROWS_WITH(sps::validate_target_model(model, 3), Catch::Contains("perceptual metric"));
+}
+
+TEST_CASE("a chooser who sees overlapping directions is found sooner with the full metric",
+          "[target][metric]") {
+  const Eigen::Matrix3d m = overlapping_metric();
+  sps::TargetModel full = model_for(m.diagonal().cwiseSqrt());
+  full.metric = m;
+  sps::TargetModel diagonal = full;
+  diagonal.metric.resize(0, 0);
+  double full_total = 0.0, diagonal_total = 0.0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> uniform(0.15, 0.85);
+    const Eigen::Vector3d target(uniform(rng), uniform(rng), uniform(rng));
+    const sps::PreferenceData data = careful_metric_choices(target, m, 25, rng);
+    const Eigen::Vector3d start = Eigen::Vector3d::Constant(0.5);
+    full_total += metric_mm(sps::estimate_target(data, full, start), target, m);
+    diagonal_total += metric_mm(sps::estimate_target(data, diagonal, start), target, m);
+  }
+  INFO("mean miss with the full metric " << full_total / 8 << " mm, with its diagonal "
+                                         << diagonal_total / 8 << " mm");
+  CHECK(full_total < 0.9 * diagonal_total);
+}
+
+TEST_CASE("an uncertainty plane in a full metric has axes orthogonal as a person sees them",
+          "[target][plane][metric]") {
+  const Eigen::Matrix3d m = overlapping_metric();
+  const sps::PerceptualMetric metric(m.diagonal().cwiseSqrt(), m);
+  const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.02, 0.004).asDiagonal();
+  const Eigen::Vector3d c = Eigen::Vector3d::Constant(0.5);
+  const double extent = 1.0;
+  const auto made = sps::uncertainty_plane(c, cov, metric, extent, 1.0);
+  REQUIRE(made);
+  const sps::Plane& p = *made;
+  // u and v are orthogonal in M (not in the box's coordinates)...
+  CHECK(std::abs(p.u.dot(m * p.v)) < 1e-9 * metric.length(p.u) * metric.length(p.v));
+  // ...and as long as the two largest spreads of what is seen.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> seen(metric.seen_covariance(cov));
+  CHECK(metric.length(p.u) == Approx(extent * std::sqrt(seen.eigenvalues()(2))));
+  CHECK(metric.length(p.v) == Approx(extent * std::sqrt(seen.eigenvalues()(1))));
+}
+
+TEST_CASE("a search keeps its full perceptual metric in its file and refuses a broken one",
+          "[target][search][metric]") {
+  sps::SearchOptions o = uncertainty_options(4);
+  const Eigen::Matrix3d m = overlapping_metric();
+  o.perceptual_scale = m.diagonal().cwiseSqrt();
+  sps::PlaneSearch search(o);
+  search.set_population(model_for(o.perceptual_scale).population);
+  search.set_perceptual_scale(o.perceptual_scale, m);
+  CHECK((search.options().perceptual_metric - m).norm() < 1e-9 * m.norm());
+  // A broken one changes nothing.
+  Eigen::Matrix3d broken = m;
+  broken(0, 2) = 1e6;
+  CHECK_THROWS_WITH(search.set_perceptual_scale(o.perceptual_scale, broken),
+                    Catch::Contains("perceptual metric"));
+  CHECK((search.options().perceptual_metric - m).norm() < 1e-9 * m.norm());
+
+  const Eigen::Vector3d goal(0.35, 0.6, 0.45);
+  for (int it = 0; it < 2; ++it) {
+    search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
+  }
+  // The planes are orthogonal in the metric.
+  const sps::Plane& next = search.current_plane();
+  CHECK(std::abs(next.u.dot(m * next.v)) < 1e-6 * std::sqrt(next.u.dot(m * next.u)) *
+                                               std::sqrt(next.v.dot(m * next.v)));
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK((restored.options().perceptual_metric - m).norm() < 1e-9 * m.norm());
+  CHECK((restored.current_plane().u - next.u).norm() < 1e-12);
+
+  auto j = nlohmann::json::parse(search.to_json());
+  j["options"]["perceptual_metric"][1] = j["options"]["perceptual_metric"][1].get<double>() * 3.0;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("perceptual metric"));
+  j["options"]["perceptual_metric"] = {1.0, 2.0};
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("perceptual_metric"));
+  j["options"].erase("perceptual_metric");  // a file from before: the scale alone
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().perceptual_metric.size() == 0);
+  // Without a scale there is no metric either.
+  search.set_perceptual_scale(Eigen::VectorXd());
+  CHECK(search.options().perceptual_metric.size() == 0);
 }
