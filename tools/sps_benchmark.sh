@@ -13,9 +13,12 @@
 #   TRIALS=10 bash tools/sps_benchmark.sh  # a quicker look
 #   bash tools/sps_benchmark.sh --body     # only the body benchmark (BODY_TRIALS, default 20);
 #                                          # the synthetic tables come from the CSVs on disk
+#   bash tools/sps_benchmark.sh --report   # only re-write docs/benchmarks.md from those CSVs
 set -euo pipefail
 ONLY_BODY=0
+REPORT_ONLY=0
 [ "${1:-}" = "--body" ] && ONLY_BODY=1
+[ "${1:-}" = "--report" ] && ONLY_BODY=1 && REPORT_ONLY=1
 cd "$(dirname "$0")/.."
 TRIALS=${TRIALS:-50}
 BODY_TRIALS=${BODY_TRIALS:-20}
@@ -52,14 +55,18 @@ done
 fi
 # The body benchmark. "sps-plain": the session without the body's perceptual distance and
 # scale (fixed factor-2 zoom, the paper's planes); "sps-mean-centre": planes centred on the
-# posterior-mean maximum instead of the estimate of the body in mind.
-for variant in sps sps-mean-centre sps-plain sps-random sls; do
+# posterior-mean maximum instead of the estimate of the body in mind; "sps-diagonal": one
+# perceptual scale per component instead of the full metric.
+for variant in sps sps-diagonal sps-mean-centre sps-plain sps-random sls; do
+  [ "$REPORT_ONLY" = 1 ] && break
   name="body-10c_${variant}_zoom-jnd"
   method=${variant%-plain}
   method=${method%-mean-centre}
+  method=${method%-diagonal}
   extra=()
   [ "$variant" = sps-plain ] && extra=(--no-adapt --no-perceptual-scale)
   [ "$variant" = sps-mean-centre ] && extra=(--no-target-model)
+  [ "$variant" = sps-diagonal ] && extra=(--diagonal-metric)
   echo "== $name"
   "$BIN" simulate --function body --components 10 --method "$method" --user zoom-jnd \
     --jnd-mm 5 --grid 3 --levels 4 --trials "$BODY_TRIALS" --iterations 15 --seed 1000 --quiet \

@@ -214,6 +214,11 @@ BODY_VARIANTS = [
             "that estimate is least certain (`sps::PlaneAxes::kTargetUncertainty`; before "
             "2026-12-06 this row used the paper's planes towards the expected improvement, "
             "which the perfect chooser of the pixel person below still uses)"),
+    ("sps-diagonal", "the same, with one perceptual scale per component (`--diagonal-metric`) "
+                     "instead of the full metric, the RMS vertex distance's Gram matrix over the "
+                     "components, in the estimate and its planes (the built-in models' "
+                     "components are not orthogonal in vertex space; the window and this row's "
+                     "`sps` use the full metric since 2026-12-06)"),
     ("sps-mean-centre", "the same, with planes centred on the GP's posterior-mean maximum "
                         "(`--no-target-model`, the search before the estimate)"),
     ("sps-plain", "SPS without them (fixed factor-2 zoom, every zoom-level click counted, the "

@@ -290,9 +290,8 @@ int run_body_simulation(const ArgParser& args) {
           spaces::make_body_holds(hold_model, holds, session.current_best()), clock));
     }
     if (perceptual_scale) {
-      session.set_perceptual_scale(distance.direction_rms_mm(), full_metric
-                                                                    ? distance.direction_gram_mm2()
-                                                                    : Eigen::MatrixXd());
+      session.set_perceptual_scale(distance.direction_rms_mm(),
+                                   full_metric ? distance.direction_gram_mm2() : Eigen::MatrixXd());
       if (target_model) session.set_population(spaces::body_population(k));
     }
     if (adapt) session.set_perceptual_distance(pairwise, policy);

@@ -125,10 +125,11 @@ functions:
 }
 
 int run(int argc, char** argv) {
-  const cli::ArgParser args(argc, argv,
-                            {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale",
-                             "diagonal-metric", "no-perceptual-ls", "no-mean-centre", "no-target-model"},
-                            {"target-betas"});
+  const cli::ArgParser args(
+      argc, argv,
+      {"help", "zoom-prefs", "quiet", "no-adapt", "no-perceptual-scale", "diagonal-metric",
+       "no-perceptual-ls", "no-mean-centre", "no-target-model"},
+      {"target-betas"});
   if (args.has("help")) {
     print_help();
     return 0;

@@ -48,7 +48,9 @@ PerceptualMetric::PerceptualMetric(const Eigen::VectorXd& scale, const Eigen::Ma
   }
 }
 
-double PerceptualMetric::length(const Eigen::VectorXd& x) const { return seen(x).norm(); }
+double PerceptualMetric::length(const Eigen::VectorXd& x) const {
+  return seen(x).norm();
+}
 
 Eigen::VectorXd PerceptualMetric::seen(const Eigen::VectorXd& x) const {
   if (!full()) return x.cwiseProduct(scale_);

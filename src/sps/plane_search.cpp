@@ -220,10 +220,9 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
 void PlaneSearch::set_population(const Population& population) {
   // The perceptual scale may come later: a unit scale stands in for it here.
   if (!population.empty()) {
-    validate_target_model(
-        {Eigen::VectorXd::Ones(options_.dims), population, options_.choice_temperature_mm,
-         Eigen::MatrixXd()},
-        options_.dims);
+    validate_target_model({Eigen::VectorXd::Ones(options_.dims), population,
+                           options_.choice_temperature_mm, Eigen::MatrixXd()},
+                          options_.dims);
   }
   options_.population = population;
 }
@@ -492,11 +491,11 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   const bool mean_centre = !set_directly && options_.centre_on_mean_maximum &&
                            options_.perceptual_scale.size() == options_.dims;
   // Empty scale: no estimate of the design in mind (no population, or not centring on it).
-  const TargetModel target = mean_centre && !options_.population.empty()
-                                 ? TargetModel{options_.perceptual_scale, options_.population,
-                                               options_.choice_temperature_mm,
-                                               options_.perceptual_metric}
-                                 : TargetModel{};
+  const TargetModel target =
+      mean_centre && !options_.population.empty()
+          ? TargetModel{options_.perceptual_scale, options_.population,
+                        options_.choice_temperature_mm, options_.perceptual_metric}
+          : TargetModel{};
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
     // tangent plane through the best point, then moved onto the surface; the estimate of the
@@ -525,8 +524,8 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     // Where the box leaves no such plane (the estimate near a face, uncertain along barely
     // visible directions), the paper's plane, built inside the box.
     if (auto plane =
-            uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus),
-                              metric(), options_.uncertainty_extent,
+            uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus), metric(),
+                              options_.uncertainty_extent,
                               options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane_ = *plane;
       uncertainty_plane_ = true;

@@ -1938,6 +1938,7 @@ TEST_CASE("close-ups frame a grid on the band where its bodies differ and compar
     }
     CHECK(missed == 0);
     CHECK(band.height_m() >= body::BandRule{}.min_height_m - 1e-9);
+    CHECK(band.top_m >= framed.tallest_m);
     if (frame.scale < 0.95 * whole_scale) {
       ++close_ups;
       // A close-up shows every head whole or none, and at least a trunk.
@@ -1956,9 +1957,12 @@ TEST_CASE("close-ups frame a grid on the band where its bodies differ and compar
       CHECK(frame.pivot_m == 0.0);
     }
   }
-  // The trunk's components are shown close up, and something (the height) keeps the whole body.
+  // The trunk's components are shown close up. Component 1 of the built-in models is stature
+  // alone (tools/default_model/pca.hpp): its most moving vertices are the heads, so it is shown
+  // from the heads down at least a metre, the heads whole (checked above for every close-up by
+  // the band's top: the tallest head).
   CHECK(close_ups >= 3);
-  CHECK(whole >= 1);
+  std::printf("close-ups on %d of 10 components, whole bodies on %d\n", close_ups, whole);
   // The same grid of one body, nothing to frame on: the whole body.
   const std::vector<Eigen::VectorXd> same(3, Eigen::VectorXd::Constant(10, 0.5));
   CHECK(perception->grid_frame(same).scale ==

@@ -20,7 +20,9 @@ Eigen::Matrix3d overlapping_metric() {
   return a.transpose() * a;
 }
 
-Eigen::Vector3d sqrt_diagonal(const Eigen::Matrix3d& m) { return m.diagonal().cwiseSqrt(); }
+Eigen::Vector3d sqrt_diagonal(const Eigen::Matrix3d& m) {
+  return m.diagonal().cwiseSqrt();
+}
 
 }  // namespace
 
@@ -33,8 +35,8 @@ TEST_CASE("a diagonal perceptual metric is the scale per coordinate", "[metric]"
   CHECK((metric.unseen(metric.seen(x)) - x).norm() < 1e-12);
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal();
   CHECK((metric.seen_covariance(cov) -
-         Eigen::Matrix3d((scale.cwiseAbs2().cwiseProduct(Eigen::Vector3d(0.01, 0.02, 0.03)))
-                             .asDiagonal()))
+         Eigen::Matrix3d(
+             (scale.cwiseAbs2().cwiseProduct(Eigen::Vector3d(0.01, 0.02, 0.03))).asDiagonal()))
             .norm() < 1e-9);
 }
 

@@ -270,7 +270,8 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
   CHECK(p.u.cwiseProduct(scale).norm() == Approx(2.0 * 4.0));  // 2 SD of sqrt(16)
   CHECK(p.v.cwiseProduct(scale).norm() == Approx(2.0 * 3.0));  // 2 SD of sqrt(9)
   // Never shorter than the smallest length.
-  const sps::Plane longer = *sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 12.0);
+  const sps::Plane longer =
+      *sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 12.0);
   CHECK(longer.u.cwiseProduct(scale).norm() == Approx(12.0));
   CHECK(longer.v.cwiseProduct(scale).norm() == Approx(12.0));
 }
@@ -300,7 +301,8 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   }
   CHECK(closest >= 0.5 * min_length);
   // Where the whole box shows less than that (1 mm per unit), there is no such plane.
-  CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(Eigen::Vector3d::Ones()), 3.0, min_length));
+  CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(Eigen::Vector3d::Ones()), 3.0,
+                                     min_length));
   // The estimate is still on the plane: c + a u + b v for some a, b.
   Eigen::Matrix<double, 3, 2> axes;
   axes << p.u, p.v;
@@ -539,9 +541,8 @@ double metric_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen
 
 // A careful chooser who sees in the full metric: of nine random points, the one nearest the
 // target in it.
-sps::PreferenceData careful_metric_choices(const Eigen::VectorXd& target,
-                                           const Eigen::MatrixXd& m, int grids,
-                                           std::mt19937_64& rng) {
+sps::PreferenceData careful_metric_choices(const Eigen::VectorXd& target, const Eigen::MatrixXd& m,
+                                           int grids, std::mt19937_64& rng) {
   const Eigen::Index d = target.size();
   sps::PreferenceData data(static_cast<int>(d));
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -574,7 +575,8 @@ TEST_CASE("with a full metric the target log posterior's gradient matches finite
   std::mt19937_64 rng(5);
   const sps::PreferenceData data =
       careful_metric_choices(Eigen::Vector3d(0.3, 0.7, 0.4), m, 12, rng);
-  for (const Eigen::Vector3d& t : {Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(0.2, 0.8, 0.6)}) {
+  for (const Eigen::Vector3d& t :
+       {Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(0.2, 0.8, 0.6)}) {
     check_gradient(data, model, t);
   }
   // And it is not the diagonal's: the off-diagonal entries change the value.
@@ -650,8 +652,8 @@ TEST_CASE("a search keeps its full perceptual metric in its file and refuses a b
   }
   // The planes are orthogonal in the metric.
   const sps::Plane& next = search.current_plane();
-  CHECK(std::abs(next.u.dot(m * next.v)) < 1e-6 * std::sqrt(next.u.dot(m * next.u)) *
-                                               std::sqrt(next.v.dot(m * next.v)));
+  CHECK(std::abs(next.u.dot(m * next.v)) <
+        1e-6 * std::sqrt(next.u.dot(m * next.u)) * std::sqrt(next.v.dot(m * next.v)));
   const auto restored = sps::PlaneSearch::from_json(search.to_json());
   CHECK((restored.options().perceptual_metric - m).norm() < 1e-9 * m.norm());
   CHECK((restored.current_plane().u - next.u).norm() < 1e-12);

@@ -73,7 +73,7 @@ struct FactorShift {
 };
 constexpr FactorShift kFemaleShift{-0.2, -0.6, -0.3, 0.3, 0.5};
 constexpr FactorShift kMaleShift{0.8, 0.7, 0.3, -0.3, -0.5};
-constexpr double kStatureTruncation = 1.4;
+constexpr double kStatureTruncation = 2.3;
 
 }  // namespace
 
