@@ -7,18 +7,11 @@
 #include <catch2/catch.hpp>
 
 #include "sps/perceptual_metric.hpp"
+#include "test_support.hpp"
 
 namespace {
 
-// Two directions that move much of the same (as two turned body components do) and a third
-// on its own: M = A^T A for the columns of A.
-Eigen::Matrix3d overlapping_metric() {
-  Eigen::Matrix3d a;
-  a << 40.0, 30.0, 0.0,  //
-      10.0, 25.0, 0.0,   //
-      0.0, 0.0, 15.0;
-  return a.transpose() * a;
-}
+using sps_test::overlapping_metric;
 
 Eigen::Vector3d sqrt_diagonal(const Eigen::Matrix3d& m) {
   return m.diagonal().cwiseSqrt();

@@ -16,6 +16,7 @@
 #include "sps/plane_construction.hpp"
 #include "sps/plane_search.hpp"
 #include "sps/target_estimate.hpp"
+#include "test_support.hpp"
 
 namespace {
 
@@ -57,23 +58,40 @@ void add_nearest_choice(sps::PreferenceData& data, const std::vector<Eigen::Vect
   data.add_preference(shown[best], others);
 }
 
-// Grids of random points around `around`; the chooser takes the one nearest the target (in
-// mm) over the others, as a person with the target in mind and a sharp eye would.
-sps::PreferenceData careful_choices(const Eigen::VectorXd& target, const Eigen::VectorXd& scale,
-                                    int grids, std::mt19937_64& rng) {
+double metric_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::MatrixXd& m) {
+  const Eigen::VectorXd d = a - b;
+  return std::sqrt(d.dot(m * d));
+}
+
+// Grids of nine random points; the chooser takes the one nearest the target in the metric m
+// (mm) over the others, as a person with the target in mind and a sharp eye would.
+sps::PreferenceData careful_metric_choices(const Eigen::VectorXd& target, const Eigen::MatrixXd& m,
+                                           int grids, std::mt19937_64& rng) {
   const Eigen::Index d = target.size();
   sps::PreferenceData data(static_cast<int>(d));
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   for (int g = 0; g < grids; ++g) {
     std::vector<Eigen::VectorXd> shown;
-    for (int k = 0; k < 9; ++k) {
+    std::size_t best = 0;
+    for (std::size_t k = 0; k < 9; ++k) {
       Eigen::VectorXd x(d);
       for (Eigen::Index i = 0; i < d; ++i) x(i) = uniform(rng);
       shown.push_back(x);
+      if (metric_mm(x, target, m) < metric_mm(shown[best], target, m)) best = k;
     }
-    add_nearest_choice(data, shown, target, scale);
+    std::vector<Eigen::VectorXd> others;
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      if (k != best) others.push_back(shown[k]);
+    }
+    data.add_preference(shown[best], others);
   }
   return data;
+}
+
+// The same for a person who sees each coordinate on its own, `scale` mm per unit.
+sps::PreferenceData careful_choices(const Eigen::VectorXd& target, const Eigen::VectorXd& scale,
+                                    int grids, std::mt19937_64& rng) {
+  return careful_metric_choices(target, scale.cwiseAbs2().asDiagonal().toDenseMatrix(), grids, rng);
 }
 
 // The point of the plane's 5x5 lattice (clamped into the box) nearest the goal: a careful
@@ -524,45 +542,7 @@ TEST_CASE("a plane still not told apart gives way to the population's axes throu
 
 namespace {
 
-// Coordinates 0 and 1 move much of the same (as the built-in body models' turned components
-// 1 and 2 do), coordinate 2 on its own: the metric M = A^T A of the columns of A (mm^2).
-Eigen::Matrix3d overlapping_metric() {
-  Eigen::Matrix3d a;
-  a << 90.0, 70.0, 0.0,  //
-      20.0, 45.0, 0.0,   //
-      0.0, 0.0, 40.0;
-  return a.transpose() * a;
-}
-
-double metric_mm(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::MatrixXd& m) {
-  const Eigen::VectorXd d = a - b;
-  return std::sqrt(d.dot(m * d));
-}
-
-// A careful chooser who sees in the full metric: of nine random points, the one nearest the
-// target in it.
-sps::PreferenceData careful_metric_choices(const Eigen::VectorXd& target, const Eigen::MatrixXd& m,
-                                           int grids, std::mt19937_64& rng) {
-  const Eigen::Index d = target.size();
-  sps::PreferenceData data(static_cast<int>(d));
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  for (int g = 0; g < grids; ++g) {
-    std::vector<Eigen::VectorXd> shown;
-    std::size_t best = 0;
-    for (std::size_t k = 0; k < 9; ++k) {
-      Eigen::VectorXd x(d);
-      for (Eigen::Index i = 0; i < d; ++i) x(i) = uniform(rng);
-      shown.push_back(x);
-      if (metric_mm(x, target, m) < metric_mm(shown[best], target, m)) best = k;
-    }
-    std::vector<Eigen::VectorXd> others;
-    for (std::size_t k = 0; k < shown.size(); ++k) {
-      if (k != best) others.push_back(shown[k]);
-    }
-    data.add_preference(shown[best], others);
-  }
-  return data;
-}
+using sps_test::overlapping_metric;
 
 }  // namespace
 

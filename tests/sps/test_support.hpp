@@ -10,6 +10,17 @@
 
 namespace sps_test {
 
+// A perceptual metric M = A^T A (mm^2 per unit^2) in which coordinates 0 and 1 move much of
+// the same (as the built-in body models' turned components 1 and 2 do) and coordinate 2 moves
+// on its own.
+inline Eigen::Matrix3d overlapping_metric() {
+  Eigen::Matrix3d a;
+  a << 90.0, 70.0, 0.0,  //
+      20.0, 45.0, 0.0,   //
+      0.0, 0.0, 40.0;
+  return a.transpose() * a;
+}
+
 // Central finite-difference gradient of f at x.
 inline Eigen::VectorXd numeric_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
                                         const Eigen::VectorXd& x, double h = 1e-6) {

@@ -10,19 +10,36 @@
 
 namespace default_model {
 
-PcaResult factored_pca(const Eigen::MatrixXd& theta, const Eigen::MatrixXd& basis, int keep) {
-  const Eigen::Index n = theta.rows(), p = theta.cols();
-  PcaResult r;
+namespace {
+
+// The population's vertices X = Theta B^T in the QR coordinates of the basis (B = QR): the
+// centred vertices are coords Q^T, so every vertex statistic comes from the small n x p
+// matrix `coords` without forming the n x 3V one.
+struct FactoredPopulation {
+  Eigen::VectorXd mean;    // 3V: the mean body's vertices
+  Eigen::MatrixXd q;       // 3V x p, orthonormal columns
+  Eigen::MatrixXd coords;  // n x p: Theta_c R^T
+};
+
+FactoredPopulation factor_population(const Eigen::MatrixXd& theta, const Eigen::MatrixXd& basis) {
+  const Eigen::Index p = theta.cols();
   const Eigen::VectorXd theta_mean = theta.colwise().mean().transpose();
-  r.mean = basis * theta_mean;
-  const Eigen::MatrixXd centred = theta.rowwise() - theta_mean.transpose();
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
-  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(basis.rows(), p);
-  const Eigen::MatrixXd M = centred * R.transpose();  // n x p
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeThinV);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
+  const Eigen::MatrixXd r = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
+  return {basis * theta_mean, qr.householderQ() * Eigen::MatrixXd::Identity(basis.rows(), p),
+          (theta.rowwise() - theta_mean.transpose()) * r.transpose()};
+}
+
+}  // namespace
+
+PcaResult factored_pca(const Eigen::MatrixXd& theta, const Eigen::MatrixXd& basis, int keep) {
+  const Eigen::Index n = theta.rows();
+  PcaResult r;
+  const FactoredPopulation f = factor_population(theta, basis);
+  r.mean = f.mean;
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(f.coords, Eigen::ComputeThinV);
   keep = static_cast<int>(std::min<Eigen::Index>(keep, svd.singularValues().size()));
-  r.directions = Q * svd.matrixV().leftCols(keep);
+  r.directions = f.q * svd.matrixV().leftCols(keep);
   r.variances = svd.singularValues().head(keep).array().square() / double(n - 1);
   r.total_variance = svd.singularValues().squaredNorm() / double(n - 1);
   return r;
@@ -46,14 +63,10 @@ PcaResult survey_pca(const Eigen::MatrixXd& theta, const Eigen::MatrixXd& basis,
                      const SurveyPcaOptions& options) {
   const Eigen::Index n = theta.rows(), p = theta.cols(), m = measures.cols();
   PcaResult r;
-  const Eigen::VectorXd theta_mean = theta.colwise().mean().transpose();
-  r.mean = basis * theta_mean;
-  const Eigen::MatrixXd centred = theta.rowwise() - theta_mean.transpose();
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
-  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(basis.rows(), p);
+  const FactoredPopulation f = factor_population(theta, basis);
+  r.mean = f.mean;
   Eigen::MatrixXd joint(n, p + m);
-  joint.leftCols(p) = centred * R.transpose();
+  joint.leftCols(p) = f.coords;
   r.total_variance = joint.leftCols(p).squaredNorm() / double(n - 1);
   const double per_measure = std::sqrt(options.measure_weight * r.total_variance / double(m));
   for (Eigen::Index j = 0; j < m; ++j) {
@@ -125,7 +138,7 @@ PcaResult survey_pca(const Eigen::MatrixXd& theta, const Eigen::MatrixXd& basis,
   r.directions.resize(basis.rows(), keep);
   r.variances.resize(keep);
   for (int k = 0; k < keep; ++k) {
-    const Eigen::VectorXd axis = Q * axes.col(k);
+    const Eigen::VectorXd axis = f.q * axes.col(k);
     r.variances[k] = axis.squaredNorm();
     r.directions.col(k) = axis / std::sqrt(r.variances[k]);
   }
