@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -32,7 +33,8 @@ const char* const kUsage =
     "--framing: bodies framed on where the grid's cells differ (close-ups, the window's\n"
     "default) or whole.\n"
     "--cells-dir also writes each cell as DIR/cell_<row>_<col>.png; --cells-csv writes each\n"
-    "cell's x (and, for bodies, its measurements in metres).\n";
+    "cell's x (and, for bodies, its measurements in metres) and how far it looks from the\n"
+    "nearest other cell (nearest_cell: the window's look-alike measure, mm for bodies).\n";
 
 int run(int argc, char** argv) {
   cli::ArgParser args(argc, argv, {"help"});
@@ -93,7 +95,7 @@ int run(int argc, char** argv) {
   if (const app::SpacePerception* perception = space->perception(); perception != nullptr) {
     const Eigen::VectorXd scale = perception->perceptual_scale();
     if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
-      session.set_perceptual_scale(scale);
+      session.set_perceptual_scale(scale, perception->perceptual_metric());
       session.set_population(perception->population());
     }
     session.set_perceptual_distance(perception->perceptual_distance(),
@@ -149,9 +151,17 @@ int run(int argc, char** argv) {
   const auto csv_path = args.get("cells-csv");
   std::ostringstream csv;
   const bool want_csv = csv_path.has_value();
+  // How far each cell looks from its nearest neighbour, as the window's look-alike test
+  // measures it (empty for a space without a perceptual distance).
+  Eigen::VectorXd nearest_cell;
   if (want_csv) {
     csv << "row,col";
     for (int d = 0; d < space->dimensions(); ++d) csv << ",x" << d + 1;
+    if (perception != nullptr) {
+      Eigen::MatrixXd apart = perception->perceptual_distance()(xs);
+      apart.diagonal().setConstant(std::numeric_limits<double>::infinity());
+      nearest_cell = apart.rowwise().minCoeff();
+    }
   }
   const auto cells_dir = args.get("cells-dir");
   if (cells_dir) {
@@ -186,11 +196,13 @@ int run(int argc, char** argv) {
         const auto numbers = space->numbers(*view.prepared);
         if (row == 0 && col == 0) {
           for (const auto& [name, value] : numbers) csv << "," << name;
+          if (nearest_cell.size() > 0) csv << ",nearest_cell";
           csv << "\n";
         }
         csv << row << "," << col << std::setprecision(9);
         for (int d = 0; d < point.x.size(); ++d) csv << "," << point.x[d];
         for (const auto& [name, value] : numbers) csv << "," << value;
+        if (nearest_cell.size() > 0) csv << "," << nearest_cell(row * n + col);
         csv << "\n";
       }
     }

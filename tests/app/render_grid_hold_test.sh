@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Holds through render-grid: every cell's measurements (--cells-csv) within the hold
 # tolerance (1 cm for lengths, 1.5 kg for mass), every cell inside the box [0,1]^n, and the
-# cells pairwise different in what is not held. Bad holds are refused with a message.
+# cells pairwise different as the window's look-alike test sees them (nearest_cell: the
+# largest vertex distance to the nearest other cell, as the grid is framed). Tape measures
+# are no proxy for that: on the survey-weighted models two held cells can differ by 10 cm
+# in fat distribution and posture and by 3 mm in every girth. Bad holds are refused with a
+# message.
 set -euo pipefail
 APP=$1
 T=$(mktemp -d)
@@ -37,10 +41,13 @@ for r in rows:
         d = abs(float(r[column[k]]) - v)
         worst[k] = max(worst[k], d)
         assert d <= tolerance[k], f"cell {r['row']},{r['col']}: {k} {r[column[k]]} vs held {v}"
+# The window's smallest difference between cells (app::ZoomPolicy::distinct_mm).
+closest = min(float(r["nearest_cell"]) for r in rows)
+assert closest >= 10.0, f"two cells look alike: only {closest:.1f} mm apart"
 free = ["chest_m", "waist_m", "hips_m", "shoulder_width_m", "inseam_m", "arm_length_m"]
-closest = min(max(abs(float(a[c]) - float(b[c])) for c in free) for a, b in itertools.combinations(rows, 2))
-assert closest > 0.005, f"two cells differ by only {closest * 1000:.1f} mm in every free measurement"
-print(f"held {held}: worst deviation {worst}; closest pair differs by {closest * 1000:.1f} mm")
+tape = min(max(abs(float(a[c]) - float(b[c])) for c in free) for a, b in itertools.combinations(rows, 2))
+print(f"held {held}: worst deviation {worst}; closest pair {closest:.1f} mm apart "
+      f"(the pair most alike in tape measures differs by {tape * 1000:.1f} mm)")
 PYEOF
 }
 check tall 1 height=1.80
