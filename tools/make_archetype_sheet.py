@@ -94,16 +94,19 @@ def main():
             out = subprocess.run([exe, "measure", "--model", sex, "--components", COMPONENTS] +
                                  args, capture_output=True, text=True)
             # Out of reach within the solve's own tolerance (half of each measurement's hold
-            # tolerance): solve again for the nearest reachable values it names (a few rounds:
-            # the least-squares end point is itself only nearly reachable), which gives a body;
-            # the 1.5 cm criterion is judged on that body below.
+            # tolerance): solve again for the nearest reachable values it names, from the
+            # nearest body it names (from the mean body a solve can end at another
+            # least-squares point), which gives a body; a few rounds, as the least-squares
+            # end point is itself only nearly reachable; the 1.5 cm criterion is judged on
+            # that body below.
             for _ in range(4):
                 if out.returncode == 0:
                     break
-                nearest = re.search(r"nearest reachable: (.*)$", out.stderr.strip())
+                nearest = re.search(r"nearest reachable: (.*?)(?:; that body: --betas (.*))?$",
+                                    out.stderr.strip())
                 if not nearest:
                     sys.exit("%s: %s" % (name, out.stderr.strip()))
-                args = []
+                args = ["--betas"] + nearest.group(2).split() if nearest.group(2) else []
                 for item in nearest.group(1).split(", "):
                     m, value, unit = item.split()
                     if m in wanted:

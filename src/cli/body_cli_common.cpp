@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -132,7 +133,16 @@ Eigen::VectorXf apply_targets(const ArgParser& args, const body::Model& model,
     throw ArgError(std::string("--target: ") + e.what());
   }
   const auto result = constraints->solve(body::unit_from_betas(full));
-  if (!result.reached) throw std::runtime_error("--target: " + result.message);
+  if (!result.reached) {
+    // The nearest reachable body itself, so that it can be looked at (`measure --betas ...`)
+    // or solved on from (a solve from the mean body can end at another least-squares point).
+    std::ostringstream nearest;
+    nearest << std::setprecision(6);
+    const Eigen::VectorXf b = body::betas_from_unit(result.x);
+    for (Eigen::Index i = 0; i < b.size(); ++i) nearest << (i == 0 ? "" : " ") << b[i];
+    throw std::runtime_error("--target: " + result.message + "; that body: --betas " +
+                             nearest.str());
+  }
   std::cerr << "target: " << result.message << " (" << result.iterations << " steps, "
             << result.evaluations << " bodies measured)\n";
   return body::betas_from_unit(result.x);
