@@ -6,6 +6,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "app/session_perception.hpp"
 #include "app/session_store.hpp"
 
 namespace app {
@@ -24,24 +25,6 @@ struct Overloaded : F... {
 };
 template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
-
-// The space's full perceptual metric where it has one that fits `scale` (its diagonal the
-// scale squared, to 0.1%: a session saved on another model keeps its own scale alone); else
-// empty, the scale alone.
-Eigen::MatrixXd usable_metric(const SpacePerception& perception, const Eigen::VectorXd& scale) {
-  Eigen::MatrixXd metric = perception.perceptual_metric();
-  if (metric.rows() != scale.size() || metric.cols() != scale.size() || !metric.allFinite()) {
-    return {};
-  }
-  const Eigen::ArrayXd ratio = metric.diagonal().array() / scale.array().square();
-  if ((ratio - 1.0).abs().maxCoeff() > 1e-3) return {};
-  try {
-    sps::validate_metric_matrix(metric, scale.size(), "the space's perceptual metric");
-  } catch (const std::invalid_argument&) {
-    return {};
-  }
-  return metric;
-}
 
 SessionSettings session_settings(const SpaceSettings& space, int grid_size, int zoom_levels,
                                  std::uint64_t seed) {
@@ -585,60 +568,17 @@ int GalleryController::grid_for(const DesignSpace& space, int asked) const {
 }
 
 void GalleryController::follow_cells() {
-  const SpacePerception* perception = space_->perception();
-  if (perception == nullptr) return;
-  session_->set_zoom_policy(perception->zoom_policy(cell_pixels_));
-  // From the next plane on, as the zoom policy: the grid on screen stays.
-  const double length = perception->min_plane_length(cell_pixels_);
-  if (length > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
-    session_->set_min_plane_length(length);
-  }
-  if (const double t = perception->choice_temperature(cell_pixels_);
-      t > 0.0 && session_->search().options().perceptual_scale.size() > 0) {
-    session_->set_choice_temperature(t);
+  if (const SpacePerception* perception = space_->perception(); perception != nullptr) {
+    follow_cell_size(*session_, *perception, cell_pixels_);
   }
 }
 
 void GalleryController::install_perception() {
-  // Before the distance below is taken: it compares the grids as they will be framed.
+  // Before the distance is taken: it compares the grids as they will be framed.
   space_->set_close_ups(options_.close_ups);
-  const SpacePerception* perception = space_->perception();
-  if (perception == nullptr) return;  // the paper's fixed zoom
-  // A session restored from a file keeps the scale it was saved with (its planes were built
-  // with it); a new one takes the space's.
-  if (session_->search().options().perceptual_scale.size() == 0) {
-    const Eigen::VectorXd scale = perception->perceptual_scale();
-    if (scale.size() == session_->settings().components && scale.allFinite() &&
-        (scale.array() > 0.0).all()) {
-      session_->set_perceptual_scale(scale, usable_metric(*perception, scale));
-      if (const double length = perception->min_plane_length(cell_pixels_); length > 0.0) {
-        session_->set_min_plane_length(length);
-      }
-      if (const double t = perception->choice_temperature(cell_pixels_); t > 0.0) {
-        session_->set_choice_temperature(t);
-      }
-      session_->set_uncertainty_size(perception->uncertainty_size());
-      session_->set_plane_axes(perception->plane_axes());
-    }
-  }
-  // Sessions saved before the full metric see the coordinates independently; their later
-  // estimates and planes measure in it too (it only reads the saved choices and scale).
-  if (const sps::SearchOptions& saved = session_->search().options();
-      saved.perceptual_scale.size() > 0 && saved.perceptual_metric.size() == 0) {
-    const Eigen::MatrixXd metric = usable_metric(*perception, saved.perceptual_scale);
-    if (metric.size() > 0) session_->set_perceptual_scale(saved.perceptual_scale, metric);
-  }
-  // Sessions saved before the target estimate existed have a scale but no population: their
-  // later planes are centred on the estimate too (it only reads the saved choices).
-  const sps::SearchOptions& search = session_->search().options();
-  if (search.perceptual_scale.size() > 0 && search.population.empty()) {
-    const sps::Population population = perception->population();
-    if (population.mean.size() == search.dims) session_->set_population(population);
-  }
-  if (options_.perceptual_zoom) {
-    session_->set_perceptual_distance(perception->perceptual_distance(),
-                                      perception->zoom_policy(cell_pixels_));
-  }
+  if (const SpacePerception* perception = space_->perception(); perception != nullptr) {
+    app::install_perception(*session_, *perception, cell_pixels_, options_.perceptual_zoom);
+  }  // else the paper's fixed zoom
 }
 
 void GalleryController::adopt(Session session, std::unique_ptr<DesignSpace> space) {

@@ -9,6 +9,7 @@
 
 #include "app/cell_view.hpp"
 #include "app/session.hpp"
+#include "app/session_perception.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/gallery_display_options.hpp"
@@ -90,16 +91,9 @@ int run(int argc, char** argv) {
   }
   settings.seed = static_cast<std::uint64_t>(args.get_int("seed", 1));
   app::Session session(settings);
-  // As the window does for a new search (GalleryController::install_perception): the space's
-  // perceptual scale (which also picks the first plane) and distance.
+  // As the window does for a new search with cells `cell` pixels high.
   if (const app::SpacePerception* perception = space->perception(); perception != nullptr) {
-    const Eigen::VectorXd scale = perception->perceptual_scale();
-    if (scale.size() == settings.components && scale.allFinite() && (scale.array() > 0.0).all()) {
-      session.set_perceptual_scale(scale, perception->perceptual_metric());
-      session.set_population(perception->population());
-    }
-    session.set_perceptual_distance(perception->perceptual_distance(),
-                                    perception->zoom_policy(cell));
+    app::install_perception(session, *perception, cell, /*perceptual_zoom=*/true);
   }
   if (const auto targets = args.get_all("target"); !targets.empty()) {
     app::TargetSolve solved;

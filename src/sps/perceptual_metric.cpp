@@ -44,12 +44,18 @@ PerceptualMetric::PerceptualMetric(const Eigen::VectorXd& scale, const Eigen::Ma
   }
   validate_metric_matrix(metric, scale.size(), "the perceptual metric");
   if (metric.size() > 0) {
+    matrix_ = metric;
     upper_ = Eigen::LLT<Eigen::MatrixXd>(0.5 * (metric + metric.transpose())).matrixU();
   }
 }
 
 double PerceptualMetric::length(const Eigen::VectorXd& x) const {
   return seen(x).norm();
+}
+
+Eigen::VectorXd PerceptualMetric::weighted(const Eigen::VectorXd& x) const {
+  if (!full()) return scale_.cwiseAbs2().cwiseProduct(x);
+  return matrix_ * x;
 }
 
 Eigen::VectorXd PerceptualMetric::seen(const Eigen::VectorXd& x) const {

@@ -30,6 +30,11 @@ class PerceptualMetric {
 
   Eigen::Index dims() const { return scale_.size(); }
   bool full() const { return upper_.size() > 0; }
+  // The visible change per unit of each coordinate on its own: the square root of M's diagonal.
+  const Eigen::VectorXd& scale() const { return scale_; }
+
+  // M x: the gradient of half the squared length at x.
+  Eigen::VectorXd weighted(const Eigen::VectorXd& x) const;
 
   // sqrt(x^T M x).
   double length(const Eigen::VectorXd& x) const;
@@ -43,7 +48,8 @@ class PerceptualMetric {
 
  private:
   Eigen::VectorXd scale_;
-  Eigen::MatrixXd upper_;  // R of the full metric; empty for a diagonal one
+  Eigen::MatrixXd matrix_;  // the full metric M as given; empty for a diagonal one
+  Eigen::MatrixXd upper_;   // R of the full metric; empty for a diagonal one
 };
 
 }  // namespace sps

@@ -220,8 +220,8 @@ PlaneSearch::PlaneSearch(const SearchOptions& options)
 void PlaneSearch::set_population(const Population& population) {
   // The perceptual scale may come later: a unit scale stands in for it here.
   if (!population.empty()) {
-    validate_target_model({Eigen::VectorXd::Ones(options_.dims), population,
-                           options_.choice_temperature_mm, Eigen::MatrixXd()},
+    validate_target_model({PerceptualMetric(Eigen::VectorXd::Ones(options_.dims)), population,
+                           options_.choice_temperature_mm},
                           options_.dims);
   }
   options_.population = population;
@@ -257,6 +257,7 @@ void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale,
   if (scale.size() == 0) {
     options_.perceptual_scale.resize(0);
     options_.perceptual_metric.resize(0, 0);
+    metric_.reset();
     options_.model.length_scale_factors.resize(0);
     options_.model.btl_scale = plain_btl_scale_;
     return;
@@ -265,7 +266,8 @@ void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale,
     throw std::invalid_argument("the perceptual scale needs " + std::to_string(options_.dims) +
                                 " positive finite entries");
   }
-  validate_metric_matrix(metric, options_.dims, "the perceptual metric");
+  PerceptualMetric checked(scale, metric);  // throws before anything changes
+  metric_ = std::move(checked);
   options_.perceptual_scale = scale;
   options_.perceptual_metric = metric;
   options_.model.btl_scale = options_.perceptual_btl_scale;
@@ -456,17 +458,12 @@ bool PlaneSearch::replace_uncertainty_plane() {
 std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) const {
   const Population& population = options_.population;
   if (hold_ || options_.method != Method::kSps ||
-      options_.plane_axes != PlaneAxes::kTargetUncertainty || population.empty() ||
-      options_.perceptual_scale.size() != options_.dims) {
+      options_.plane_axes != PlaneAxes::kTargetUncertainty || population.empty() || !metric_) {
     return std::nullopt;
   }
-  return uncertainty_plane(c, population_covariance(population), metric(),
+  return uncertainty_plane(c, population_covariance(population), *metric_,
                            options_.uncertainty_extent,
                            options_.uncertainty_min_lengths * options_.min_plane_length);
-}
-
-PerceptualMetric PlaneSearch::metric() const {
-  return PerceptualMetric(options_.perceptual_scale, options_.perceptual_metric);
 }
 
 bool PlaneSearch::replace_with_population_plane() {
@@ -488,28 +485,27 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     const int best = model_->best_observed_index();
     if (best >= 0) x_plus = model_->points().col(best);
   }
-  const bool mean_centre = !set_directly && options_.centre_on_mean_maximum &&
-                           options_.perceptual_scale.size() == options_.dims;
-  // Empty scale: no estimate of the design in mind (no population, or not centring on it).
-  const TargetModel target =
+  const bool mean_centre = !set_directly && options_.centre_on_mean_maximum && metric_;
+  // None: no estimate of the design in mind (no population, or not centring on it).
+  const std::optional<TargetModel> target =
       mean_centre && !options_.population.empty()
-          ? TargetModel{options_.perceptual_scale, options_.population,
-                        options_.choice_temperature_mm, options_.perceptual_metric}
-          : TargetModel{};
+          ? std::optional<TargetModel>(
+                TargetModel{*metric_, options_.population, options_.choice_temperature_mm})
+          : std::nullopt;
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
     // tangent plane through the best point, then moved onto the surface; the estimate of the
     // design in mind, made from choices that all lie on the surface, is moved onto it).
     x_plus = hold_->project(x_plus);
-    if (target.scale.size() > 0) {
-      x_plus = hold_->project(estimate_target(data_, target, x_plus));
+    if (target) {
+      x_plus = hold_->project(estimate_target(data_, *target, x_plus));
     } else if (mean_centre) {
       const TangentSpace tangent(hold_->normals(x_plus), options_.dims);
       x_plus = hold_->project(
           maximize_posterior_mean_on_tangent(*model_, x_plus, tangent, 4, options_.threads));
     }
-  } else if (target.scale.size() > 0) {
-    x_plus = estimate_target(data_, target, x_plus);
+  } else if (target) {
+    x_plus = estimate_target(data_, *target, x_plus);
   } else if (mean_centre) {
     x_plus = maximize_posterior_mean(*model_, x_plus, 4, 60, options_.threads);
   }
@@ -517,14 +513,13 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     plane_ = random_plane(x_plus, rng_);
     return;
   }
-  const bool uncertain_axes = options_.method == Method::kSps && !hold_ &&
-                              target.scale.size() > 0 &&
+  const bool uncertain_axes = options_.method == Method::kSps && !hold_ && target &&
                               options_.plane_axes != PlaneAxes::kExpectedImprovement;
   if (uncertain_axes) {
     // Where the box leaves no such plane (the estimate near a face, uncertain along barely
     // visible directions), the paper's plane, built inside the box.
     if (auto plane =
-            uncertainty_plane(x_plus, target_posterior_covariance(data_, target, x_plus), metric(),
+            uncertainty_plane(x_plus, target_posterior_covariance(data_, *target, x_plus), *metric_,
                               options_.uncertainty_extent,
                               options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane_ = *plane;

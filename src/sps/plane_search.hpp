@@ -262,8 +262,6 @@ class PlaneSearch {
   // a population and a perceptual scale, no hold); nullopt otherwise or where no plane of
   // told-apart cells fits.
   std::optional<Plane> population_plane(const Eigen::VectorXd& c) const;
-  // The perceptual scale with the full metric where there is one; assumes a scale.
-  PerceptualMetric metric() const;
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 
@@ -283,6 +281,9 @@ class PlaneSearch {
   bool uncertainty_plane_ = false;
   // model.btl_scale as given, restored when the perceptual scale is removed.
   double plain_btl_scale_ = 0.01;
+  // options_'s perceptual scale with its full metric where there is one, factored once
+  // (set_perceptual_scale); empty without a scale.
+  std::optional<PerceptualMetric> metric_;
 };
 
 }  // namespace sps

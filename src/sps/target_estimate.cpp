@@ -28,11 +28,10 @@ void require(bool ok, const std::string& what) {
 
 void validate_target_model(const TargetModel& model, int dims) {
   const auto n = static_cast<Eigen::Index>(dims);
-  require(model.scale.size() == n && model.population.mean.size() == n &&
+  require(model.metric.dims() == n && model.population.mean.size() == n &&
               model.population.sd.size() == n,
-          "the scale, population mean and SD need " + std::to_string(dims) + " entries each");
-  require(model.scale.allFinite() && (model.scale.array() > 0.0).all(),
-          "every scale entry must be positive and finite");
+          "the perceptual metric, population mean and SD need " + std::to_string(dims) +
+              " dimensions each");
   require(model.population.sd.allFinite() && (model.population.sd.array() > 0.0).all(),
           "every population SD must be positive and finite");
   require(model.population.mean.allFinite() && (model.population.mean.array() >= 0.0).all() &&
@@ -53,11 +52,6 @@ void validate_target_model(const TargetModel& model, int dims) {
   require(std::isfinite(model.temperature_mm) && model.temperature_mm > 0.0 &&
               model.temperature_mm <= 1e4,
           "the choice temperature must lie in (0, 10000] mm");
-  try {
-    validate_metric_matrix(model.metric, n, "the perceptual metric");
-  } catch (const std::invalid_argument& e) {
-    require(false, e.what());
-  }
 }
 
 Eigen::MatrixXd population_covariance(const Population& population) {
@@ -87,14 +81,11 @@ struct PointUtilities {
 PointUtilities point_utilities(const PreferenceData& data, const TargetModel& model,
                                const Eigen::VectorXd& t) {
   const Eigen::MatrixXd& points = data.points();
-  const Eigen::VectorXd s2 = model.scale.cwiseProduct(model.scale);
-  const bool full = model.metric.size() > 0;
   const double inv_temp = 1.0 / model.temperature_mm;
   PointUtilities u{Eigen::VectorXd(points.cols()), Eigen::MatrixXd(t.size(), points.cols())};
   for (Eigen::Index i = 0; i < points.cols(); ++i) {
     const Eigen::VectorXd diff = points.col(i) - t;
-    const Eigen::VectorXd weighted =
-        full ? Eigen::VectorXd(model.metric * diff) : Eigen::VectorXd(s2.cwiseProduct(diff));
+    const Eigen::VectorXd weighted = model.metric.weighted(diff);
     const double distance = std::sqrt(diff.dot(weighted) + kSmoothingMm2);
     u.value(i) = -distance * inv_temp;
     u.gradient.col(i) = weighted * (inv_temp / distance);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "sps/perceptual_metric.hpp"
 #include "sps/preference_data.hpp"
 
 namespace sps {
@@ -32,26 +33,24 @@ Eigen::MatrixXd population_covariance(const Population& population);
 Eigen::MatrixXd population_precision(const Population& population);
 
 struct TargetModel {
-  Eigen::VectorXd scale;  // perceptual scale: mm of visible change per unit of each coordinate
+  // How far apart two points look (mm): the scale alone where the coordinates are seen
+  // independently, else the full metric (perceptual_metric.hpp). Validated when made.
+  PerceptualMetric metric;
   Population population;
-  // Empty (the scale alone: coordinates seen independently), or the full perceptual metric M
-  // (mm^2 per unit^2, see perceptual_metric.hpp), whose diagonal is the scale squared.
   // Softmax temperature of a choice (mm): a cell 3 mm closer to the design in mind is e times
   // as likely to be chosen. 1 and 6 mm measured worse than 3 on the body benchmark.
   double temperature_mm = 3.0;
-  Eigen::MatrixXd metric;
 };
 
 // Throws std::invalid_argument naming the first problem: sizes differ from `dims`, a
-// non-finite or non-positive scale or SD, a mean outside [0, 1], a correlation matrix that is
-// not symmetric with a unit diagonal or not positive definite, a temperature outside
-// (0, 1e4], a metric that validate_metric_matrix refuses.
+// non-finite or non-positive SD, a mean outside [0, 1], a correlation matrix that is not
+// symmetric with a unit diagonal or not positive definite, a temperature outside (0, 1e4].
 void validate_target_model(const TargetModel& model, int dims);
 
 // Log posterior (up to a constant) of the design in mind being at t, with its gradient:
 // the population prior plus, for every preference, log softmax(-distance / temperature) of
 // the chosen point among the compared ones; distance is sqrt((x - t)^T M (x - t)) (smoothed at
-// 0), M the model's metric or diag(scale^2).
+// 0), M the model's metric.
 double target_log_posterior(const PreferenceData& data, const TargetModel& model,
                             const Eigen::VectorXd& t, Eigen::VectorXd* gradient = nullptr);
 

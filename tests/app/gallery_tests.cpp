@@ -23,6 +23,7 @@
 #include "app/gallery_controller.hpp"
 #include "app/gallery_layout.hpp"
 #include "app/gallery_view.hpp"
+#include "app/session_perception.hpp"
 #include "app/session_store.hpp"
 #include "app/ui_prefs.hpp"
 #include "body/grid_framing.hpp"
@@ -898,6 +899,57 @@ TEST_CASE("the window's body sessions see what the benchmark's simulated person 
   CHECK(c.session().search().options().perceptual_scale.size() == 12);
   CHECK(c.session().search().options().perceptual_metric.size() == 0);  // seen independently
   CHECK(c.session().search().options().min_plane_length == Approx(spaces::kPhotoMinPlaneDeltaE));
+}
+
+TEST_CASE("what a space's perception gives a session follows the cells' size, as render-grid's",
+          "[gallery][zoom][metric]") {
+  // One function serves the window and `render-grid`: a new session takes everything, sized
+  // for its cells; a restored one keeps its scale and gains only what it was saved without.
+  const auto space = spaces::open_space({"body", "neutral", 10});
+  const app::SpacePerception* perception = space->perception();
+  REQUIRE(perception != nullptr);
+  app::SessionSettings settings;
+  settings.space = "body";
+  settings.components = space->dimensions();
+  const auto installed = [&](int cell_px) {
+    app::Session session(settings);
+    app::install_perception(session, *perception, cell_px, true);
+    return session;
+  };
+  const app::Session small = installed(120);
+  const app::Session large = installed(400);
+  const sps::SearchOptions& o = small.search().options();
+  REQUIRE(o.perceptual_scale.size() == 10);
+  CHECK(o.perceptual_metric.rows() == 10);
+  CHECK(o.population.mean.size() == 10);
+  CHECK(o.plane_axes == perception->plane_axes());
+  CHECK(o.min_plane_length == Approx(perception->min_plane_length(120)));
+  CHECK(o.choice_temperature_mm == Approx(perception->choice_temperature(120)));
+  CHECK(small.has_perceptual_distance());
+  // Larger cells show finer differences: shorter planes, finer look-alike threshold (at 230
+  // px and above a close-up's planes are at the optimizer's own floor).
+  CHECK(large.search().options().min_plane_length < o.min_plane_length);
+  CHECK(large.zoom_policy().look_alike_mm < small.zoom_policy().look_alike_mm);
+  // Resized cells: the zoom at once, the plane length from the next plane on.
+  app::Session resized = installed(120);
+  app::follow_cell_size(resized, *perception, 400);
+  CHECK(resized.zoom_policy().look_alike_mm == Approx(large.zoom_policy().look_alike_mm));
+  CHECK(resized.search().options().min_plane_length ==
+        Approx(large.search().options().min_plane_length));
+  // A session saved on another model (its scale not this metric's diagonal) keeps its scale
+  // alone; one saved on this model without the metric gains it.
+  const Eigen::VectorXd scale = perception->perceptual_scale();
+  CHECK(app::usable_metric(*perception, 1.01 * scale).size() == 0);
+  CHECK(app::usable_metric(*perception, scale.head(9)).size() == 0);
+  app::Session other(settings);
+  other.set_perceptual_scale(1.01 * scale);
+  app::install_perception(other, *perception, 230, true);
+  CHECK((other.search().options().perceptual_scale - 1.01 * scale).norm() < 1e-12);
+  CHECK(other.search().options().perceptual_metric.size() == 0);
+  app::Session same(settings);
+  same.set_perceptual_scale(scale);
+  app::install_perception(same, *perception, 230, true);
+  CHECK(same.search().options().perceptual_metric.rows() == 10);
 }
 
 namespace {

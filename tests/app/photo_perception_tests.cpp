@@ -171,9 +171,8 @@ TEST_CASE("a photo session with the colour-difference hook shows no cells closer
 
 TEST_CASE("the photo population: white-balance shifts across the tones are typical", "[photo]") {
   const sps::Population p = spaces::photo_population();
-  sps::TargetModel m;
-  m.scale = Eigen::VectorXd::Ones(spaces::kPhotoParameters);
-  m.population = p;
+  const sps::TargetModel m{sps::PerceptualMetric(Eigen::VectorXd::Ones(spaces::kPhotoParameters)),
+                           p};
   REQUIRE_NOTHROW(sps::validate_target_model(m, spaces::kPhotoParameters));
   const Eigen::MatrixXd& r = p.correlation;
   // Parameters 3 + 3 band + axis (axes: cyan-red, magenta-green, yellow-blue).

@@ -26,6 +26,8 @@ TEST_CASE("a diagonal perceptual metric is the scale per coordinate", "[metric]"
   const Eigen::Vector3d x(0.1, -0.2, 0.3);
   CHECK(metric.length(x) == Approx(x.cwiseProduct(scale).norm()));
   CHECK((metric.unseen(metric.seen(x)) - x).norm() < 1e-12);
+  CHECK((metric.weighted(x) - scale.cwiseAbs2().cwiseProduct(x)).norm() < 1e-9);
+  CHECK((metric.scale() - scale).norm() == 0.0);
   const Eigen::Matrix3d cov = Eigen::Vector3d(0.01, 0.02, 0.03).asDiagonal();
   CHECK((metric.seen_covariance(cov) -
          Eigen::Matrix3d(
@@ -43,6 +45,11 @@ TEST_CASE("a full perceptual metric measures sqrt(x^T M x) and sees overlapping 
                                    Eigen::Vector3d(0.5, -0.5, 0.0)}) {
     CHECK(metric.length(x) == Approx(std::sqrt(x.dot(m * x))));
     CHECK((metric.unseen(metric.seen(x)) - x).norm() < 1e-12);
+    // M x, the gradient of half the squared length: the same as seen through R^T R.
+    CHECK((metric.weighted(x) - m * x).norm() < 1e-9 * (m * x).norm() + 1e-12);
+    const Eigen::Vector3d seen_back =
+        Eigen::Matrix3d(m.llt().matrixU()).transpose() * metric.seen(x);
+    CHECK((metric.weighted(x) - seen_back).norm() < 1e-9 * (m * x).norm() + 1e-12);
   }
   // Moving the first two directions against each other shows far less than the diagonal
   // alone would say (they move the same vertices the same way).

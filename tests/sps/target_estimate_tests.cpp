@@ -31,9 +31,9 @@ sps::SearchOptions uncertainty_options(std::uint64_t seed) {
   return o;
 }
 
-sps::TargetModel model_for(const Eigen::VectorXd& scale) {
-  sps::TargetModel m;
-  m.scale = scale;
+sps::TargetModel model_for(const Eigen::VectorXd& scale,
+                           const Eigen::MatrixXd& metric = Eigen::MatrixXd()) {
+  sps::TargetModel m{sps::PerceptualMetric(scale, metric), {}};
   m.population.mean = Eigen::VectorXd::Constant(scale.size(), 0.5);
   m.population.sd = Eigen::VectorXd::Constant(scale.size(), 1.0 / 6.0);
   return m;
@@ -173,8 +173,8 @@ TEST_CASE("a malformed target model is refused with a message", "[target]") {
   bad.population.mean(2) = std::nan("");
   CHECK_THROWS_AS(sps::validate_target_model(bad, 3), std::invalid_argument);
   bad = good;
-  bad.scale(0) = -1.0;
-  CHECK_THROWS_AS(sps::validate_target_model(bad, 3), std::invalid_argument);
+  bad.metric = sps::PerceptualMetric(Eigen::Vector2d(100.0, 50.0));
+  CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("perceptual metric"));
   bad = good;
   bad.temperature_mm = 0.0;
   CHECK_THROWS_WITH(sps::validate_target_model(bad, 3), Catch::Contains("temperature"));
@@ -549,8 +549,7 @@ using sps_test::overlapping_metric;
 TEST_CASE("with a full metric the target log posterior's gradient matches finite differences",
           "[target][metric]") {
   const Eigen::Matrix3d m = overlapping_metric();
-  sps::TargetModel model = model_for(m.diagonal().cwiseSqrt());
-  model.metric = m;
+  const sps::TargetModel model = model_for(m.diagonal().cwiseSqrt(), m);
   CHECK_NOTHROW(sps::validate_target_model(model, 3));
   std::mt19937_64 rng(5);
   const sps::PreferenceData data =
@@ -561,22 +560,22 @@ TEST_CASE("with a full metric the target log posterior's gradient matches finite
   }
   // And it is not the diagonal's: the off-diagonal entries change the value.
   sps::TargetModel diagonal = model;
-  diagonal.metric.resize(0, 0);
+  diagonal.metric = sps::PerceptualMetric(m.diagonal().cwiseSqrt());
   const Eigen::Vector3d t(0.2, 0.8, 0.6);
   CHECK(std::abs(sps::target_log_posterior(data, model, t) -
                  sps::target_log_posterior(data, diagonal, t)) > 0.1);
   // A metric the model cannot use is refused by name.
-  model.metric(0, 1) += 500.0;
-  CHECK_THROWS_WITH(sps::validate_target_model(model, 3), Catch::Contains("perceptual metric"));
+  Eigen::Matrix3d asymmetric = m;
+  asymmetric(0, 1) += 500.0;
+  CHECK_THROWS_WITH(model_for(m.diagonal().cwiseSqrt(), asymmetric),
+                    Catch::Contains("perceptual metric"));
 }
 
 TEST_CASE("a chooser who sees overlapping directions is found sooner with the full metric",
           "[target][metric]") {
   const Eigen::Matrix3d m = overlapping_metric();
-  sps::TargetModel full = model_for(m.diagonal().cwiseSqrt());
-  full.metric = m;
-  sps::TargetModel diagonal = full;
-  diagonal.metric.resize(0, 0);
+  const sps::TargetModel full = model_for(m.diagonal().cwiseSqrt(), m);
+  const sps::TargetModel diagonal = model_for(m.diagonal().cwiseSqrt());
   double full_total = 0.0, diagonal_total = 0.0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     std::mt19937_64 rng(seed);
