@@ -72,6 +72,13 @@ for variant in sps sps-diagonal sps-mean-centre sps-plain sps-random sls; do
     --jnd-mm 5 --grid 3 --levels 4 --trials "$BODY_TRIALS" --iterations 15 --seed 1000 --quiet \
     "${extra[@]}" --csv "$OUT/$name.csv" --per-trial-csv "$OUT/${name}_per-trial.csv" > /dev/null
 done
+# Re-writing the report alone: the trial counts are those of the CSVs on disk (distinct trial
+# numbers of a per-trial file), not this run's defaults.
+trials_in() { [ -f "$1" ] && tail -n +2 "$1" | cut -d, -f1 | sort -u | wc -l; }
+if [ "$REPORT_ONLY" = 1 ]; then
+  BODY_TRIALS=$(trials_in "$OUT/body-10c_sps_zoom-jnd_per-trial.csv" || echo "$BODY_TRIALS")
+  TRIALS=$(trials_in "$OUT/gaussian-15d_sps_zoom_per-trial.csv" || echo "$TRIALS")
+fi
 new_doc=$(mktemp)
 /usr/bin/python3 tools/sps_benchmark_report.py "$OUT" "$REFERENCE_DIR" "$TRIALS" "$BODY_TRIALS" > "$new_doc"
 # The holds, pixel-person, loader and photo sections belong to tools/holds_benchmark.sh,
