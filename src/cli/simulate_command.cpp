@@ -48,13 +48,15 @@ options:
   --current-best C    posterior-mean | last-selection (default posterior-mean)
   --plane-axes A      what SPS planes span once the design in mind is estimated:
                       expected-improvement (the paper's) | uncertainty (where that estimate is
-                      least certain); default: the window's (uncertainty for a body searched
-                      by a person, --jnd-px or --jnd-mm above 0, and for photos; the paper's
-                      for --jnd-mm 0 and the synthetic functions)
+                      least certain); default: the window's (uncertainty for bodies and
+                      photos; the paper's for the synthetic functions)
   --uncertainty-extent X   half-diagonals of uncertainty planes in SDs (default 5;
                       photos 3)
   --uncertainty-min-lengths N  their smallest side, in smallest plane lengths (default 2;
                       photos 1)
+  --choice-region-slack K  how loosely a choice's region bounds the estimate in their
+                      covariance, in choice temperatures (default: the space's, 8 for
+                      bodies; -1: not at all, as photos and before 2026-12-06)
   --threads N         optimizer threads (default 2)
   --csv FILE          also write the table as CSV
   --per-trial-csv F   write every trial's gap and optimizer seconds per iteration

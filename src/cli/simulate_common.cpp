@@ -51,7 +51,8 @@ const std::set<std::string>& search_option_names() {
                                            "representatives",
                                            "plane-axes",
                                            "uncertainty-extent",
-                                           "uncertainty-min-lengths"};
+                                           "uncertainty-min-lengths",
+                                           "choice-region-slack"};
   return names;
 }
 
@@ -89,6 +90,10 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
       args.get_double("uncertainty-min-lengths", options.uncertainty_min_lengths);
   if (!(options.uncertainty_min_lengths >= 0.0 && options.uncertainty_min_lengths <= 10.0)) {
     throw ArgError("--uncertainty-min-lengths must be in [0, 10]");
+  }
+  options.choice_region_slack = args.get_double("choice-region-slack", options.choice_region_slack);
+  if (!(options.choice_region_slack >= -1.0 && options.choice_region_slack <= 1e3)) {
+    throw ArgError("--choice-region-slack must be in [-1, 1000] (negative: off)");
   }
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {

@@ -148,6 +148,7 @@ int run_photo_simulation(const ArgParser& args) {
   const sps::UncertaintyPlaneSize size = spaces::photo_uncertainty_size();
   if (!args.has("uncertainty-extent")) options.uncertainty_extent = size.extent;
   if (!args.has("uncertainty-min-lengths")) options.uncertainty_min_lengths = size.min_lengths;
+  if (!args.has("choice-region-slack")) options.choice_region_slack = size.region_slack;
   options.min_plane_length = args.get_double("min-plane-delta-e", spaces::kPhotoMinPlaneDeltaE);
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length <= 100.0)) {
     throw ArgError("--min-plane-delta-e must be in [0, 100]");

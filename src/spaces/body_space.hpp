@@ -20,6 +20,19 @@ namespace spaces {
 // coefficients: N(0, 1) each), for sps::SearchOptions::population.
 sps::Population body_population(int components);
 
+// How the window's uncertainty planes for bodies are sized: the optimizer's extent and
+// smallest side, and the choices' regions trusted with 8 choice temperatures of slack (body
+// benchmark, 100 trials, mean gap at plane 10: a 5 mm person 7.54 -> 6.38 mm, the pixel
+// person at 400 px 6.72 -> 6.05, at 230 px 7.53 -> 7.94 with the median 7.36 -> 7.28; 4
+// temperatures helped the 5 mm person as much and cost the 230 px person more;
+// docs/benchmarks.md). Used by BodySpace and by `simulate --function body`.
+constexpr double kBodyChoiceRegionSlack = 8.0;
+inline sps::UncertaintyPlaneSize body_uncertainty_size() {
+  sps::UncertaintyPlaneSize size;
+  size.region_slack = kBodyChoiceRegionSlack;
+  return size;
+}
+
 class BodySpace : public app::DesignSpace,
                   public app::SpacePerception,
                   public app::SpaceMeasurements {
@@ -79,6 +92,7 @@ class BodySpace : public app::DesignSpace,
   // A person who cannot tell near neighbours apart at the cells' size: planes along where the
   // estimate of the body in mind is least certain (docs/benchmarks.md, the pixel person).
   sps::PlaneAxes plane_axes() const override { return sps::PlaneAxes::kTargetUncertainty; }
+  sps::UncertaintyPlaneSize uncertainty_size() const override { return body_uncertainty_size(); }
   Eigen::VectorXd perceptual_scale() const override;
   // The RMS vertex distance's Gram matrix (body::ShapeDistance::direction_gram_mm2): a model's
   // components need not be orthogonal in vertex space (the built-in ones are turned so that

@@ -136,6 +136,7 @@ void validate_options(const SearchOptions& o) {
           "choice_temperature_mm must lie in [1e-6, 10000]");
   require(in(o.uncertainty_extent, 0.1, 10.0), "uncertainty_extent must lie in [0.1, 10]");
   require(in(o.uncertainty_min_lengths, 0.0, 10.0), "uncertainty_min_lengths must lie in [0, 10]");
+  require(in(o.choice_region_slack, -1.0, 1e3), "choice_region_slack must lie in [-1, 1000]");
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
@@ -248,8 +249,12 @@ void PlaneSearch::set_uncertainty_size(const UncertaintyPlaneSize& size) {
   if (!(size.min_lengths >= 0.0 && size.min_lengths <= 10.0)) {
     throw std::invalid_argument("the uncertainty planes' smallest length must lie in [0, 10]");
   }
+  if (!(size.region_slack >= -1.0 && size.region_slack <= 1e3)) {
+    throw std::invalid_argument("the choice regions' slack must lie in [-1, 1000]");
+  }
   options_.uncertainty_extent = size.extent;
   options_.uncertainty_min_lengths = size.min_lengths;
+  options_.choice_region_slack = size.region_slack;
 }
 
 void PlaneSearch::set_perceptual_scale(const Eigen::VectorXd& scale,
@@ -489,8 +494,9 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   // None: no estimate of the design in mind (no population, or not centring on it).
   const std::optional<TargetModel> target =
       mean_centre && !options_.population.empty()
-          ? std::optional<TargetModel>(
-                TargetModel{*metric_, options_.population, options_.choice_temperature_mm})
+          ? std::optional<TargetModel>(TargetModel{*metric_, options_.population,
+                                                   options_.choice_temperature_mm,
+                                                   options_.choice_region_slack})
           : std::nullopt;
   if (hold_) {
     // Every point shown lies on the held surface: the centre is sought there too (on the
@@ -648,6 +654,7 @@ std::string PlaneSearch::to_json() const {
     j["options"]["plane_axes"] = plane_axes_name(options_.plane_axes);
     j["options"]["uncertainty_extent"] = options_.uncertainty_extent;
     j["options"]["uncertainty_min_lengths"] = options_.uncertainty_min_lengths;
+    j["options"]["choice_region_slack"] = options_.choice_region_slack;
   }
   j["rng"] = rng_state();
   json points = json::array();
@@ -797,6 +804,11 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
       if (o.contains("uncertainty_min_lengths")) {
         options.uncertainty_min_lengths =
             double_from_json(o.at("uncertainty_min_lengths"), "uncertainty_min_lengths", 0.0, 10.0);
+      }
+      // Files saved before it get it for their planes still to come (it reads their choices).
+      if (o.contains("choice_region_slack")) {
+        options.choice_region_slack =
+            double_from_json(o.at("choice_region_slack"), "choice_region_slack", -1.0, 1e3);
       }
     }
     PlaneSearch search(options);

@@ -97,6 +97,10 @@ struct SearchOptions {
   // 1.8 mm over 200 trials, docs/benchmarks.md).
   Population population;
   double choice_temperature_mm = 3.0;  // TargetModel::temperature_mm
+  // TargetModel::region_slack_temperatures: what a choice's region says of where the design
+  // in mind is, in the uncertainty planes' covariance; negative (the default, and files saved
+  // before it): nothing. A design space asks for it with its UncertaintyPlaneSize.
+  double choice_region_slack = -1.0;
   // With a population: kTargetUncertainty spans the planes along where the estimate of the
   // design in mind is least certain, each half-diagonal `uncertainty_extent` of its standard
   // deviations and at least `uncertainty_min_lengths` times min_plane_length long. For a person
@@ -117,6 +121,9 @@ struct SearchOptions {
 struct UncertaintyPlaneSize {
   double extent = SearchOptions{}.uncertainty_extent;
   double min_lengths = SearchOptions{}.uncertainty_min_lengths;
+  // SearchOptions::choice_region_slack: how far the estimate's covariance, which sizes and
+  // turns these planes, trusts the regions of the choices.
+  double region_slack = SearchOptions{}.choice_region_slack;
 };
 
 // The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane

@@ -52,6 +52,8 @@ void validate_target_model(const TargetModel& model, int dims) {
   require(std::isfinite(model.temperature_mm) && model.temperature_mm > 0.0 &&
               model.temperature_mm <= 1e4,
           "the choice temperature must lie in (0, 10000] mm");
+  require(std::isfinite(model.region_slack_temperatures) && model.region_slack_temperatures <= 1e3,
+          "the choice regions' slack must be finite and at most 1000 temperatures");
 }
 
 Eigen::MatrixXd population_covariance(const Population& population) {
@@ -184,6 +186,22 @@ Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const Ta
       const Eigen::VectorXd centred = u.gradient.col(members[m]) - mean_gradient;
       information.noalias() +=
           weight(static_cast<Eigen::Index>(m)) * (centred * centred.transpose());
+    }
+  }
+  if (model.region_slack_temperatures >= 0.0) {
+    const double slack = model.region_slack_temperatures * model.temperature_mm;
+    const Eigen::MatrixXd& points = data.points();
+    for (const Preference& p : data.preferences()) {
+      for (const int other : p.others) {
+        const Eigen::VectorXd apart = points.col(other) - points.col(p.chosen);
+        const Eigen::VectorXd weighted = model.metric.weighted(apart);
+        const double length = std::sqrt(std::max(0.0, apart.dot(weighted)));
+        if (!(length > 1e-9)) continue;  // the same point shown twice says nothing
+        // The seen distance along the joining line, per unit of t: weighted / length.
+        const Eigen::VectorXd along = weighted / length;
+        const double width = length + slack;
+        information.noalias() += (6.0 / (width * width)) * (along * along.transpose());
+      }
     }
   }
   const Eigen::MatrixXd symmetric = 0.5 * (information + information.transpose());

@@ -923,6 +923,7 @@ TEST_CASE("what a space's perception gives a session follows the cells' size, as
   CHECK(o.perceptual_metric.rows() == 10);
   CHECK(o.population.mean.size() == 10);
   CHECK(o.plane_axes == perception->plane_axes());
+  CHECK(o.choice_region_slack == Approx(spaces::kBodyChoiceRegionSlack));  // the body's regions
   CHECK(o.min_plane_length == Approx(perception->min_plane_length(120)));
   CHECK(o.choice_temperature_mm == Approx(perception->choice_temperature(120)));
   CHECK(small.has_perceptual_distance());

@@ -328,6 +328,44 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   CHECK((p.c + axes * ab - c).norm() < 1e-9);
 }
 
+TEST_CASE("a careful chooser's choices of a grid's centre bound the estimate's uncertainty",
+          "[target]") {
+  // Grids in coordinates 0 and 1, cells 30 mm apart (10 temperatures: the softmax is
+  // saturated), the centre chosen every time: the design is within a cell of it along 0 and
+  // 1, and nothing is known along 2.
+  const sps::TargetModel without = model_for(Eigen::Vector3d(100.0, 100.0, 100.0));
+  CHECK(without.region_slack_temperatures < 0.0);  // off unless a space asks for it
+  sps::TargetModel with = without;
+  with.region_slack_temperatures = 8.0;
+  sps::PreferenceData data(3);
+  for (int g = 0; g < 6; ++g) {
+    std::vector<Eigen::VectorXd> others;
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -1; b <= 1; ++b)
+        if (a != 0 || b != 0) others.push_back(Eigen::Vector3d(0.5 + 0.3 * a, 0.5 + 0.3 * b, 0.5));
+    data.add_preference(Eigen::Vector3d::Constant(0.5), others);
+  }
+  const Eigen::Vector3d t = Eigen::Vector3d::Constant(0.5);
+  const Eigen::MatrixXd cw = sps::target_posterior_covariance(data, with, t);
+  const Eigen::MatrixXd cn = sps::target_posterior_covariance(data, without, t);
+  const double prior = std::pow(1.0 / 6.0, 2);
+  // Without the regions the saturated choices leave nearly the prior's spread.
+  CHECK(cn(0, 0) > 0.5 * prior);
+  // With them the spread along 0 and 1 is of the order of a cell (sd under 30 mm = 0.3),
+  // and along 2 it stays the prior's.
+  CHECK(std::sqrt(cw(0, 0)) * 100.0 < 30.0);
+  CHECK(std::sqrt(cw(1, 1)) * 100.0 < 30.0);
+  CHECK(cw(0, 0) < 0.25 * cn(0, 0));
+  CHECK(cw(2, 2) == Approx(cn(2, 2)).epsilon(1e-6));
+  // More slack for a person who confuses near cells: less certain than a careful chooser.
+  sps::TargetModel loose = with;
+  loose.region_slack_temperatures = 20.0;
+  CHECK(sps::target_posterior_covariance(data, loose, t)(0, 0) > cw(0, 0));
+  // A slack the model cannot use is refused by name.
+  loose.region_slack_temperatures = std::nan("");
+  CHECK_THROWS_WITH(sps::validate_target_model(loose, 3), Catch::Contains("slack"));
+}
+
 TEST_CASE("uncertainty planes are centred on the estimate and saved with the search",
           "[target][search]") {
   const sps::SearchOptions o = uncertainty_options(9);
@@ -339,7 +377,13 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
     search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
     const sps::Plane& next = search.current_plane();
     const Eigen::VectorXd estimate = sps::estimate_target(search.data(), m, next.c);
-    CHECK((next.c - estimate).norm() < 1e-6);
+    // Through the estimate: at its centre, or slid along its own axes where clamped cells
+    // would coincide (uncertainty_plane).
+    Eigen::Matrix<double, 3, 2> axes;
+    axes << next.u, next.v;
+    const Eigen::Vector2d along = axes.colPivHouseholderQr().solve(estimate - next.c);
+    CAPTURE(it, (next.c - estimate).norm());
+    CHECK((axes * along - (estimate - next.c)).norm() < 1e-6);
     // Its axes are orthogonal as a person sees them.
     const Eigen::VectorXd su = next.u.cwiseProduct(o.perceptual_scale);
     const Eigen::VectorXd sv = next.v.cwiseProduct(o.perceptual_scale);
@@ -347,22 +391,29 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
   }
   // A design space's size for them is kept for the next planes and saved with the search;
   // sizes outside the ranges are refused and change nothing.
-  search.set_uncertainty_size({2.5, 1.5});
+  search.set_uncertainty_size({2.5, 1.5, 8.0});
   CHECK_THROWS_AS(search.set_uncertainty_size({0.05, 1.0}), std::invalid_argument);
   CHECK_THROWS_AS(search.set_uncertainty_size({3.0, -1.0}), std::invalid_argument);
   CHECK_THROWS_AS(search.set_uncertainty_size({std::nan(""), 1.0}), std::invalid_argument);
+  CHECK_THROWS_AS(search.set_uncertainty_size({2.5, 1.5, std::nan("")}), std::invalid_argument);
   CHECK(search.options().uncertainty_extent == Approx(2.5));
   CHECK(search.options().uncertainty_min_lengths == Approx(1.5));
   const auto restored = sps::PlaneSearch::from_json(search.to_json());
   CHECK(restored.options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
   CHECK(restored.options().uncertainty_extent == Approx(2.5));
   CHECK(restored.options().uncertainty_min_lengths == Approx(1.5));
+  CHECK(restored.options().choice_region_slack == Approx(8.0));
   auto j = nlohmann::json::parse(search.to_json());
   j["options"]["plane_axes"] = "sideways";
   CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("plane_axes"));
   j["options"].erase("plane_axes");  // a file from before: the paper's axes
   CHECK(sps::PlaneSearch::from_json(j.dump()).options().plane_axes ==
         sps::PlaneAxes::kExpectedImprovement);
+  j["options"]["choice_region_slack"] = 5000.0;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("choice_region_slack"));
+  j["options"].erase("choice_region_slack");  // a file from before: the default
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().choice_region_slack ==
+        sps::SearchOptions{}.choice_region_slack);
 }
 
 namespace {
