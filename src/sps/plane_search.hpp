@@ -106,7 +106,9 @@ struct SearchOptions {
   // deviations and at least `uncertainty_min_lengths` times min_plane_length long. For a person
   // who cannot tell near neighbours apart (the window's cells, the benchmark's pixel person)
   // this finds the body sooner than the paper's expected improvement, which assumes a precise
-  // chooser; a precise chooser is better served by the latter (docs/benchmarks.md).
+  // chooser. With the choices' regions (choice_region_slack) it serves a precise chooser best
+  // too (body benchmark, perfect chooser: mean gap at plane 10 4.97 mm against 6.96); without
+  // them such a chooser stalled on it (docs/benchmarks.md).
   // The smallest side is 2 lengths, not 3: with close-ups the smallest length is already
   // what 2 px show of the framed band, and 3 kept the later planes too coarse for where the
   // estimate had got to (pixel person at 230 px, 200 trials: mean gap at plane 10 down by
