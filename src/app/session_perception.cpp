@@ -1,19 +1,12 @@
 #include "app/session_perception.hpp"
 
-#include <stdexcept>
-
 #include "sps/perceptual_metric.hpp"
 
 namespace app {
 
 Eigen::MatrixXd usable_metric(const SpacePerception& perception, const Eigen::VectorXd& scale) {
   const Eigen::MatrixXd metric = perception.perceptual_metric();
-  try {
-    sps::validate_metric_matrix(metric, scale.size(), "the space's perceptual metric");
-  } catch (const std::invalid_argument&) {
-    return {};
-  }
-  if (metric.size() == 0) return {};
+  if (metric.size() == 0 || sps::metric_matrix_problem(metric, scale.size())) return {};
   const Eigen::ArrayXd ratio = metric.diagonal().array() / scale.array().square();
   if ((ratio - 1.0).abs().maxCoeff() > 1e-3) return {};
   return metric;

@@ -208,10 +208,8 @@ int run_body_simulation(const ArgParser& args) {
   // 4.97 mm against 6.96 on the paper's planes; without the regions it stalled at 10.9).
   if (!args.has("plane-axes")) options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
   const bool target_model = !args.has("no-target-model");
-  // The window's regions of choices for bodies (spaces::body_uncertainty_size).
-  if (!args.has("choice-region-slack")) {
-    options.choice_region_slack = spaces::body_uncertainty_size().region_slack;
-  }
+  // The window's plane size and regions of choices for bodies (spaces::body_uncertainty_size).
+  use_space_uncertainty_size(args, spaces::body_uncertainty_size(), options);
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
   if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {
     throw ArgError("--compare-mm must be in [0, 10000)");

@@ -35,6 +35,17 @@ double sum(const std::vector<double>& v) {
   return total;
 }
 
+// The uncertainty planes' size as the command line or the space gave it, checked by the
+// search's own rule (sps::validate_uncertainty_size) and reported as a bad argument.
+void check_uncertainty_size(const sps::SearchOptions& options) {
+  try {
+    sps::validate_uncertainty_size(sps::uncertainty_size(options));
+  } catch (const std::invalid_argument& e) {
+    throw ArgError(std::string(e.what()) +
+                   " (--uncertainty-extent, --uncertainty-min-lengths, --choice-region-slack)");
+  }
+}
+
 }  // namespace
 
 const std::set<std::string>& search_option_names() {
@@ -83,18 +94,10 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
     throw ArgError("--plane-axes: use expected-improvement or uncertainty");
   }
   options.uncertainty_extent = args.get_double("uncertainty-extent", options.uncertainty_extent);
-  if (!(options.uncertainty_extent >= 0.1 && options.uncertainty_extent <= 10.0)) {
-    throw ArgError("--uncertainty-extent must be in [0.1, 10]");
-  }
   options.uncertainty_min_lengths =
       args.get_double("uncertainty-min-lengths", options.uncertainty_min_lengths);
-  if (!(options.uncertainty_min_lengths >= 0.0 && options.uncertainty_min_lengths <= 10.0)) {
-    throw ArgError("--uncertainty-min-lengths must be in [0, 10]");
-  }
   options.choice_region_slack = args.get_double("choice-region-slack", options.choice_region_slack);
-  if (!(options.choice_region_slack >= -1.0 && options.choice_region_slack <= 1e3)) {
-    throw ArgError("--choice-region-slack must be in [-1, 1000] (negative: off)");
-  }
+  check_uncertainty_size(options);
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {
     options.current_best = sps::CurrentBest::kLastSelection;
@@ -102,6 +105,14 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
     throw ArgError("--current-best: use posterior-mean or last-selection");
   }
   return options;
+}
+
+void use_space_uncertainty_size(const ArgParser& args, const sps::UncertaintyPlaneSize& size,
+                                sps::SearchOptions& options) {
+  if (!args.has("uncertainty-extent")) options.uncertainty_extent = size.extent;
+  if (!args.has("uncertainty-min-lengths")) options.uncertainty_min_lengths = size.min_lengths;
+  if (!args.has("choice-region-slack")) options.choice_region_slack = size.region_slack;
+  check_uncertainty_size(options);
 }
 
 void play_trial(app::Session& session, const bench::TargetDistance& to_target,

@@ -17,6 +17,10 @@ namespace cli {
 const std::set<std::string>& search_option_names();
 // --method, --threads, --current-best and the model settings; throws ArgError on bad values.
 sps::SearchOptions read_search_options(const ArgParser& args);
+// The design space's uncertainty plane size (as the window's planes get it), for each of its
+// values not given on the command line; throws ArgError on a bad value.
+void use_space_uncertainty_size(const ArgParser& args, const sps::UncertaintyPlaneSize& size,
+                                sps::SearchOptions& options);
 
 struct SimulationResults {
   int first_seed = 0;

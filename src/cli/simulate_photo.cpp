@@ -145,10 +145,7 @@ int run_photo_simulation(const ArgParser& args) {
   sps::SearchOptions options = read_search_options(args);
   // The window's planes for photos (spaces::PhotoSpace::plane_axes), unless told otherwise.
   if (!args.has("plane-axes")) options.plane_axes = sps::PlaneAxes::kTargetUncertainty;
-  const sps::UncertaintyPlaneSize size = spaces::photo_uncertainty_size();
-  if (!args.has("uncertainty-extent")) options.uncertainty_extent = size.extent;
-  if (!args.has("uncertainty-min-lengths")) options.uncertainty_min_lengths = size.min_lengths;
-  if (!args.has("choice-region-slack")) options.choice_region_slack = size.region_slack;
+  use_space_uncertainty_size(args, spaces::photo_uncertainty_size(), options);
   options.min_plane_length = args.get_double("min-plane-delta-e", spaces::kPhotoMinPlaneDeltaE);
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length <= 100.0)) {
     throw ArgError("--min-plane-delta-e must be in [0, 100]");

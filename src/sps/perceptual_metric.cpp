@@ -7,30 +7,34 @@
 
 namespace sps {
 
-void validate_metric_matrix(const Eigen::MatrixXd& metric, Eigen::Index dims,
-                            const std::string& what) {
-  if (metric.size() == 0) return;
-  const auto fail = [&](const std::string& problem) {
-    throw std::invalid_argument(what + " " + problem);
-  };
+std::optional<std::string> metric_matrix_problem(const Eigen::MatrixXd& metric, Eigen::Index dims) {
+  if (metric.size() == 0) return std::nullopt;
   if (metric.rows() != dims || metric.cols() != dims) {
-    fail("needs " + std::to_string(dims) + " x " + std::to_string(dims) + " entries, got " +
-         std::to_string(metric.rows()) + " x " + std::to_string(metric.cols()));
+    return "needs " + std::to_string(dims) + " x " + std::to_string(dims) + " entries, got " +
+           std::to_string(metric.rows()) + " x " + std::to_string(metric.cols());
   }
-  if (!metric.allFinite()) fail("holds a non-finite entry");
+  if (!metric.allFinite()) return "holds a non-finite entry";
   const Eigen::VectorXd diagonal = metric.diagonal();
   if ((diagonal.array() < 1e-18).any() || (diagonal.array() > 1e18).any()) {
-    fail("needs every diagonal entry in [1e-18, 1e18]");
+    return "needs every diagonal entry in [1e-18, 1e18]";
   }
   if ((metric - metric.transpose()).cwiseAbs().maxCoeff() > 1e-9 * metric.cwiseAbs().maxCoeff()) {
-    fail("is not symmetric");
+    return "is not symmetric";
   }
   // Relative to the diagonal, so that the check does not depend on the units.
   const Eigen::VectorXd inv_sqrt = diagonal.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd normalised = inv_sqrt.asDiagonal() * metric * inv_sqrt.asDiagonal();
   const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (normalised + normalised.transpose()));
   if (llt.info() != Eigen::Success || llt.matrixLLT().diagonal().minCoeff() < 1e-6) {
-    fail("is not positive definite (two directions look the same)");
+    return "is not positive definite (two directions look the same)";
+  }
+  return std::nullopt;
+}
+
+void validate_metric_matrix(const Eigen::MatrixXd& metric, Eigen::Index dims,
+                            const std::string& what) {
+  if (const auto problem = metric_matrix_problem(metric, dims)) {
+    throw std::invalid_argument(what + " " + *problem);
   }
 }
 

@@ -7,15 +7,20 @@
 // two independent changes.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
 
 namespace sps {
 
-// Throws std::invalid_argument "<what> ..." unless `metric` is empty or a dims x dims matrix
-// that is finite, symmetric (to 1e-9 of its largest entry) and positive definite, with every
-// diagonal entry in [1e-18, 1e18].
+// What is wrong with `metric` ("is not symmetric", ...), or nothing when it is empty or a
+// dims x dims matrix that is finite, symmetric (to 1e-9 of its largest entry) and positive
+// definite, with every diagonal entry in [1e-18, 1e18]. For callers that fall back on a
+// diagonal metric rather than refuse.
+std::optional<std::string> metric_matrix_problem(const Eigen::MatrixXd& metric, Eigen::Index dims);
+
+// Throws std::invalid_argument "<what> <problem>" where metric_matrix_problem finds one.
 void validate_metric_matrix(const Eigen::MatrixXd& metric, Eigen::Index dims,
                             const std::string& what);
 

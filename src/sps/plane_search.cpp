@@ -114,6 +114,22 @@ void require(bool ok, const std::string& what) {
 
 }  // namespace
 
+UncertaintyPlaneSize uncertainty_size(const SearchOptions& options) {
+  return {options.uncertainty_extent, options.uncertainty_min_lengths, options.choice_region_slack};
+}
+
+void validate_uncertainty_size(const UncertaintyPlaneSize& size) {
+  const auto in = [](double v, double lo, double hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  require(in(size.extent, 0.1, 10.0),
+          "the uncertainty planes' extent (uncertainty_extent) must lie in [0.1, 10]");
+  require(in(size.min_lengths, 0.0, 10.0),
+          "the uncertainty planes' smallest length (uncertainty_min_lengths) must lie in [0, 10]");
+  require(in(size.region_slack, -1.0, 1e3),
+          "the choice regions' slack (choice_region_slack) must lie in [-1, 1000]; negative: off");
+}
+
 void validate_options(const SearchOptions& o) {
   require(o.dims >= 1 && o.dims <= kMaxSearchDims,
           "the number of dimensions must be between 1 and " + std::to_string(kMaxSearchDims) +
@@ -134,9 +150,7 @@ void validate_options(const SearchOptions& o) {
   require(in(o.perceptual_btl_scale, 1e-8, 1e3), "perceptual_btl_scale must lie in [1e-8, 1000]");
   require(in(o.choice_temperature_mm, 1e-6, 1e4),
           "choice_temperature_mm must lie in [1e-6, 10000]");
-  require(in(o.uncertainty_extent, 0.1, 10.0), "uncertainty_extent must lie in [0.1, 10]");
-  require(in(o.uncertainty_min_lengths, 0.0, 10.0), "uncertainty_min_lengths must lie in [0, 10]");
-  require(in(o.choice_region_slack, -1.0, 1e3), "choice_region_slack must lie in [-1, 1000]");
+  validate_uncertainty_size(uncertainty_size(o));
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
@@ -243,15 +257,7 @@ void PlaneSearch::set_choice_temperature(double mm) {
 }
 
 void PlaneSearch::set_uncertainty_size(const UncertaintyPlaneSize& size) {
-  if (!(size.extent >= 0.1 && size.extent <= 10.0)) {
-    throw std::invalid_argument("the uncertainty planes' extent must lie in [0.1, 10]");
-  }
-  if (!(size.min_lengths >= 0.0 && size.min_lengths <= 10.0)) {
-    throw std::invalid_argument("the uncertainty planes' smallest length must lie in [0, 10]");
-  }
-  if (!(size.region_slack >= -1.0 && size.region_slack <= 1e3)) {
-    throw std::invalid_argument("the choice regions' slack must lie in [-1, 1000]");
-  }
+  validate_uncertainty_size(size);
   options_.uncertainty_extent = size.extent;
   options_.uncertainty_min_lengths = size.min_lengths;
   options_.choice_region_slack = size.region_slack;
@@ -797,19 +803,15 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
                             options.plane_axes)) {
         throw std::runtime_error("unknown plane_axes " + json_fields::brief(o.at("plane_axes")));
       }
-      if (o.contains("uncertainty_extent")) {
-        options.uncertainty_extent =
-            double_from_json(o.at("uncertainty_extent"), "uncertainty_extent", 0.1, 10.0);
-      }
-      if (o.contains("uncertainty_min_lengths")) {
-        options.uncertainty_min_lengths =
-            double_from_json(o.at("uncertainty_min_lengths"), "uncertainty_min_lengths", 0.0, 10.0);
-      }
+      // Read as numbers here; their ranges are validate_uncertainty_size's, checked when the
+      // search is made from the options.
+      const auto number = [&o](const char* name, double& value) {
+        if (o.contains(name)) value = double_from_json(o.at(name), name, -1e6, 1e6);
+      };
+      number("uncertainty_extent", options.uncertainty_extent);
+      number("uncertainty_min_lengths", options.uncertainty_min_lengths);
       // Files saved before it get it for their planes still to come (it reads their choices).
-      if (o.contains("choice_region_slack")) {
-        options.choice_region_slack =
-            double_from_json(o.at("choice_region_slack"), "choice_region_slack", -1.0, 1e3);
-      }
+      number("choice_region_slack", options.choice_region_slack);
     }
     PlaneSearch search(options);
     const int d = options.dims;

@@ -128,6 +128,14 @@ struct UncertaintyPlaneSize {
   double region_slack = SearchOptions{}.choice_region_slack;
 };
 
+// The options' three uncertainty-plane values.
+UncertaintyPlaneSize uncertainty_size(const SearchOptions& options);
+
+// The one check of an uncertainty plane size, for the setter, the options and the command
+// line: throws std::invalid_argument naming the first value outside its range (extent
+// [0.1, 10], smallest length [0, 10] min_plane_lengths, region slack [-1, 1000]).
+void validate_uncertainty_size(const UncertaintyPlaneSize& size);
+
 // The half-diagonal (in [0, 1] units) of the first plane with a perceptual scale: the plane
 // spans the two most visible directions over +-2.4 standard deviations for a body model.
 constexpr double kVisibleFirstPlaneExtent = 0.4;

@@ -111,6 +111,13 @@ if err=$("$bin" simulate --function body --components 4 --trials 1 --iterations 
   fail "--framing sideways was accepted"
 fi
 grep -q "close-ups or whole-body" <<<"$err" || fail "--framing sideways: $err"
+# The uncertainty planes' size is checked by the search's one rule, whichever option is off,
+# for bodies and photos alike.
+for args in "--function body --choice-region-slack 5000" "--function body --uncertainty-extent 0" \
+            "--function photo --uncertainty-min-lengths 11"; do
+  if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
+  grep -q "must lie in" <<<"$err" || fail "no range named for: $args: $err"
+done
 
 # The photo benchmark: the window's 3x3 grids kept 3.5 Delta E apart, a 2.3-JND person, the
 # body benchmark's columns; a named task is one fixed edit for every trial.

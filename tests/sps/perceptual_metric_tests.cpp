@@ -84,6 +84,10 @@ TEST_CASE("a malformed perceptual metric is refused with a message", "[metric]")
   bad = good;
   bad(1, 1) = -5.0;
   CHECK_THROWS_AS(sps::validate_metric_matrix(bad, 3, "the metric"), std::invalid_argument);
+  // The same rule, without an exception, for callers that fall back on the scale alone.
+  CHECK_FALSE(sps::metric_matrix_problem(good, 3).has_value());
+  CHECK(sps::metric_matrix_problem(bad, 3).value_or("").find("diagonal") != std::string::npos);
+  CHECK(sps::metric_matrix_problem(good, 2).has_value());
   CHECK_THROWS_AS(sps::PerceptualMetric(Eigen::Vector3d(1.0, 0.0, 1.0)), std::invalid_argument);
   CHECK_THROWS_AS(sps::PerceptualMetric(Eigen::Vector2d(1.0, 1.0), good), std::invalid_argument);
 }

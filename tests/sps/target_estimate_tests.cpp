@@ -411,6 +411,16 @@ TEST_CASE("uncertainty planes are centred on the estimate and saved with the sea
         sps::PlaneAxes::kExpectedImprovement);
   j["options"]["choice_region_slack"] = 5000.0;
   CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("choice_region_slack"));
+  // A file's sizes meet the setter's rule (validate_uncertainty_size), not a copy of it.
+  j["options"]["choice_region_slack"] = 8.0;
+  j["options"]["uncertainty_extent"] = 0.05;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("uncertainty_extent"));
+  j["options"]["uncertainty_extent"] = 2.5;
+  j["options"]["uncertainty_min_lengths"] = 11.0;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()),
+                    Catch::Contains("uncertainty_min_lengths"));
+  j["options"]["uncertainty_min_lengths"] = 1.5;
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().uncertainty_min_lengths == Approx(1.5));
   j["options"].erase("choice_region_slack");  // a file from before: the default
   CHECK(sps::PlaneSearch::from_json(j.dump()).options().choice_region_slack ==
         sps::SearchOptions{}.choice_region_slack);
