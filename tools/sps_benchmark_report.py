@@ -216,7 +216,12 @@ BODY_VARIANTS = [
             "which the perfect chooser of the pixel person below used until then), its uncertainty "
             "bounded by the regions of the choices as well (`sps::TargetModel::"
             "region_slack_temperatures`, 8 for bodies, since 2026-12-06; without them these "
-            "100 trials had a mean gap of 7.54 mm at plane 10 and a median of 5.85 at plane 15)"),
+            "100 trials had a mean gap of 7.54 mm at plane 10 and a median of 5.85 at plane 15); "
+            "the estimate reads this person's choices with their threshold as the softmax "
+            "temperature (5 mm, `app::choice_temperature_for_jnd_mm`; with the 3 mm before, "
+            "a mean gap of 6.38 mm at plane 10, 5.28 at plane 15, a median of 5.30 at plane 15 "
+            "and a median saved body of 4.99; the sps-diagonal, sps-random and sls rows "
+            "changed with it, the sps-mean-centre and sps-plain rows do not use it)"),
     ("sps-diagonal", "the same, with one perceptual scale per component (`--diagonal-metric`) "
                      "instead of the full metric, the RMS vertex distance's Gram matrix over the "
                      "components, in the estimate and its planes (the built-in models' "

@@ -34,6 +34,11 @@ double choice_temperature_for_cells(double cell_px, double jnd_px) {
   return std::max(kChoiceTemperatureMm, look_alike_mm(cell_px, jnd_px) / 3.0);
 }
 
+double choice_temperature_for_jnd_mm(double jnd_rms_mm) {
+  return std::isfinite(jnd_rms_mm) ? std::max(kChoiceTemperatureMm, jnd_rms_mm)
+                                   : kChoiceTemperatureMm;
+}
+
 ZoomPolicy zoom_policy_for_cells(double cell_px, double jnd_px) {
   ZoomPolicy policy;
   policy.distinct_mm = std::max(kCloneMm, look_alike_mm(cell_px, jnd_px));

@@ -71,6 +71,15 @@ double look_alike_mm(double cell_px, double jnd_px = kDefaultJndPx);
 constexpr double kChoiceTemperatureMm = 3.0;
 double choice_temperature_for_cells(double cell_px, double jnd_px = kDefaultJndPx);
 
+// The same for the body benchmark's person who cannot tell apart bodies within `jnd_rms_mm`
+// (RMS, `simulate --jnd-mm`): that threshold itself, never below kChoiceTemperatureMm (the
+// perfect chooser's). A third of the pixel person's threshold above is about the same, as the
+// largest vertex distance of two bodies is about three times their RMS distance. Refitted on
+// the window's planes with the choices' regions (60 people each on seeds 2000-2059 and
+// 3000-3059, mean gap at plane 15): the 5 mm person 5.42 mm with 3 mm, 5.12 with 4 and 5; the
+// 10 mm person (seeds 2000-2059) 11.39 mm at plane 10 with 3 mm, 10.27 with 6, 10.00 with 10.
+double choice_temperature_for_jnd_mm(double jnd_rms_mm);
+
 // zoom_policy_for_cells(), the same rule as a session's ZoomPolicy, is in app/session.hpp.
 
 }  // namespace app

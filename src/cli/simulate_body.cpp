@@ -195,10 +195,11 @@ int run_body_simulation(const ArgParser& args) {
   if (!(options.perceptual_btl_scale >= 1e-8 && options.perceptual_btl_scale <= 1e3)) {
     throw ArgError("--perceptual-btl must be in [1e-8, 1000]");
   }
-  // The pixel person's choices are as noisy as the window assumes at that cell size.
+  // The pixel person's choices are as noisy as the window assumes at that cell size; the mm
+  // person's as their threshold says.
   options.choice_temperature_mm = args.get_double(
       "choice-temperature-mm", pixel_person ? app::choice_temperature_for_cells(cell_px, jnd_px)
-                                            : options.choice_temperature_mm);
+                                            : app::choice_temperature_for_jnd_mm(jnd_mm));
   if (!(options.choice_temperature_mm >= 0.01 && options.choice_temperature_mm <= 1e3)) {
     throw ArgError("--choice-temperature-mm must be in [0.01, 1000]");
   }

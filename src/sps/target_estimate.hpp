@@ -38,7 +38,8 @@ struct TargetModel {
   PerceptualMetric metric;
   Population population;
   // Softmax temperature of a choice (mm): a cell 3 mm closer to the design in mind is e times
-  // as likely to be chosen. 1 and 6 mm measured worse than 3 on the body benchmark.
+  // as likely to be chosen. The window sets it from the cells' size
+  // (app::choice_temperature_for_cells), the body benchmark from its person's threshold.
   double temperature_mm = 3.0;
   // With how many temperatures of slack a choice's region bounds the design in mind in
   // target_posterior_covariance (below); negative: not at all.

@@ -2090,6 +2090,10 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
         Approx(app::choice_temperature_for_cells(app::kDefaultCellPx)));
   CHECK(app::choice_temperature_for_cells(app::kDefaultCellPx) == Approx(at_default / 3.0));
   CHECK(app::choice_temperature_for_cells(2000) == Approx(app::kChoiceTemperatureMm));
+  // The benchmark's mm person: their threshold, never below the precise chooser's 3 mm.
+  CHECK(app::choice_temperature_for_jnd_mm(10.0) == Approx(10.0));
+  CHECK(app::choice_temperature_for_jnd_mm(0.0) == Approx(app::kChoiceTemperatureMm));
+  CHECK(app::choice_temperature_for_jnd_mm(std::nan("")) == Approx(app::kChoiceTemperatureMm));
   // For a person at the window the planes run where that estimate is least certain.
   CHECK(c.session().search().options().plane_axes == sps::PlaneAxes::kTargetUncertainty);
   // Every grid of a plane clicked through at that size shows nine cells that differ by at
