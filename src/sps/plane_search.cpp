@@ -525,14 +525,17 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     plane_ = random_plane(x_plus, rng_);
     return;
   }
-  const bool uncertain_axes = options_.method == Method::kSps && !hold_ && target &&
+  const bool uncertain_axes = options_.method == Method::kSps && target &&
                               options_.plane_axes != PlaneAxes::kExpectedImprovement;
   if (uncertain_axes) {
+    // With holds the design in mind keeps the held values: the uncertainty left is the one
+    // given them, whose axes lie in the held surface's tangent space at the estimate.
+    Eigen::MatrixXd covariance = target_posterior_covariance(data_, *target, x_plus);
+    if (hold_) covariance = covariance_given_holds(covariance, hold_->normals(x_plus));
     // Where the box leaves no such plane (the estimate near a face, uncertain along barely
     // visible directions), the paper's plane, built inside the box.
     if (auto plane =
-            uncertainty_plane(x_plus, target_posterior_covariance(data_, *target, x_plus), *metric_,
-                              options_.uncertainty_extent,
+            uncertainty_plane(x_plus, covariance, *metric_, options_.uncertainty_extent,
                               options_.uncertainty_min_lengths * options_.min_plane_length)) {
       plane_ = *plane;
       uncertainty_plane_ = true;

@@ -246,8 +246,10 @@ class PlaneSearch {
   void set_uncertainty_size(const UncertaintyPlaneSize& size);
 
   // Holds (sps/held_search.hpp): with a hold the planes are built on its surface (the centre
-  // projected onto it, x_EI and v in its tangent space, the first plane along its most
-  // visible tangent directions, from use_visible_first_plane() and start_over() on); nullptr
+  // projected onto it; uncertainty planes along the estimate's uncertainty given the held
+  // values, covariance_given_holds, else x_EI and v in its tangent space; the first plane
+  // along its most visible tangent directions, from use_visible_first_plane() and
+  // start_over() on); nullptr
   // releases it. The current plane stays until the next one is made. Not saved with the
   // state: the caller installs it again after from_json(). Without a hold nothing changes.
   void set_hold(std::shared_ptr<const SearchHold> hold);

@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "sps/bounded_maximizer.hpp"
 #include "sps/perceptual_metric.hpp"
@@ -206,6 +207,21 @@ Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const Ta
   }
   const Eigen::MatrixXd symmetric = 0.5 * (information + information.transpose());
   return symmetric.ldlt().solve(Eigen::MatrixXd::Identity(d, d));
+}
+
+Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
+                                       const Eigen::MatrixXd& normals) {
+  const Eigen::Index d = covariance.rows();
+  require(covariance.cols() == d && covariance.allFinite(),
+          "the covariance must be a finite square matrix");
+  if (normals.rows() == 0) return covariance;
+  require(normals.cols() == d && normals.allFinite(),
+          "the held normals need " + std::to_string(d) + " finite columns");
+  const Eigen::MatrixXd cn = covariance * normals.transpose();
+  // The pseudo-inverse (dependent or vanishing normals condition on what they do say).
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> ncn(normals * cn);
+  const Eigen::MatrixXd conditioned = covariance - cn * ncn.solve(cn.transpose());
+  return 0.5 * (conditioned + conditioned.transpose());
 }
 
 }  // namespace sps

@@ -81,4 +81,12 @@ Eigen::VectorXd estimate_target(const PreferenceData& data, const TargetModel& m
 Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const TargetModel& model,
                                             const Eigen::VectorXd& t);
 
+// That covariance once the held quantities are known exactly (a hold: the design in mind keeps
+// them, so it lies on the held surface): the Gaussian conditioned on N (t - estimate) = 0,
+// C - C N^T (N C N^T)^+ N C, with the rows of `normals` (N) the held quantities' gradients at
+// the estimate. It is zero along the normals' directions (in the C-metric sense), so the
+// principal axes of what is left lie in the surface's tangent space. No normals: C itself.
+Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
+                                       const Eigen::MatrixXd& normals);
+
 }  // namespace sps

@@ -5,6 +5,10 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <catch2/catch.hpp>
 
@@ -12,6 +16,7 @@
 #include "sps/held_search.hpp"
 #include "sps/plane_construction.hpp"
 #include "sps/plane_search.hpp"
+#include "sps/target_estimate.hpp"
 #include "test_support.hpp"
 #include "testing/simulated_user.hpp"
 #include "testing/test_functions.hpp"
@@ -316,4 +321,85 @@ TEST_CASE("a plane moved onto a hold: centre on it, directions tangent, lengths 
   // A cell of the plane projected with the centre's normals lands on the surface.
   const Eigen::VectorXd cell = hold.project_near(held.plane.point(0.5, -0.5), held.normals);
   CHECK(hold.value(cell) == Approx(0.5).margin(1e-9));
+}
+
+TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest kept",
+          "[held][target]") {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(4, 4);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
+  const Eigen::MatrixXd c = a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(4, 4);
+  const Eigen::RowVectorXd n = weights(4).transpose();
+  const Eigen::MatrixXd given = sps::covariance_given_holds(c, n);
+  // Known exactly along the held quantity, symmetric, never more uncertain than before.
+  CHECK((n * given).norm() < 1e-9 * c.norm());
+  CHECK((given - given.transpose()).norm() < 1e-12 * c.norm());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> less(c - given);
+  CHECK(less.eigenvalues().minCoeff() > -1e-9 * c.norm());
+  // The limit of ever more information along the normal: (C^-1 + lambda n^T n)^-1.
+  const Eigen::MatrixXd information = c.inverse() + 1e9 * n.transpose() * n;
+  CHECK((information.inverse() - given).norm() < 1e-6 * c.norm());
+  // Nothing held: unchanged; a normal given twice: the same as once; a vanishing normal
+  // (a quantity that does not change here) says nothing.
+  CHECK((sps::covariance_given_holds(c, Eigen::MatrixXd(0, 4)) - c).norm() == 0.0);
+  Eigen::MatrixXd twice(2, 4);
+  twice << n, n;
+  CHECK((sps::covariance_given_holds(c, twice) - given).norm() < 1e-9 * c.norm());
+  CHECK((sps::covariance_given_holds(c, Eigen::MatrixXd::Zero(1, 4)) - c).norm() <
+        1e-12 * c.norm());
+  CHECK_THROWS_AS(sps::covariance_given_holds(c, Eigen::MatrixXd::Ones(1, 3)),
+                  std::invalid_argument);
+}
+
+TEST_CASE("a held search with a population spans its planes along the uncertainty left",
+          "[held][search][target]") {
+  const int d = 5;
+  auto hold = std::make_shared<const LinearHold>(weights(d), 0.55);
+  sps::SearchOptions o;
+  o.dims = d;
+  o.seed = 3;
+  o.threads = 1;
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::PlaneSearch search(o);
+  const Eigen::VectorXd scale = perceptual_scale(d);
+  search.set_perceptual_scale(scale);
+  sps::Population population;
+  population.mean = Eigen::VectorXd::Constant(d, 0.5);
+  population.sd = Eigen::VectorXd::Constant(d, 1.0 / 6.0);
+  search.set_population(population);
+  search.set_hold(hold);
+  REQUIRE(search.use_visible_first_plane());  // the first plane chosen again, on the surface
+  const sps::TargetModel model{sps::PerceptualMetric(scale), population,
+                               search.options().choice_temperature_mm,
+                               search.options().choice_region_slack};
+  const Eigen::VectorXd goal = hold->project(Eigen::VectorXd::LinSpaced(d, 0.3, 0.7));
+  for (int i = 0; i < 4; ++i) {
+    const sps::Plane& p = search.current_plane();
+    INFO("plane " << i);
+    CHECK(hold->value(p.c) == Approx(0.55).margin(1e-6));
+    // In the surface's tangent space, as every held plane is.
+    CHECK(std::abs(weights(d).dot(p.u)) < 1e-6 * p.u.norm());
+    CHECK(std::abs(weights(d).dot(p.v)) < 1e-6 * p.v.norm());
+    if (i > 0) {
+      // Along the most uncertain direction left once the held value is known (the paper's
+      // plane, towards the expected improvement, would point elsewhere).
+      const Eigen::MatrixXd given = sps::covariance_given_holds(
+          sps::target_posterior_covariance(search.data(), model, p.c), weights(d).transpose());
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(
+          model.metric.seen_covariance(given));
+      const Eigen::VectorXd most = model.metric.unseen(eigen.eigenvectors().col(d - 1));
+      CHECK(std::abs(most.normalized().dot(p.u.normalized())) > 0.98);
+    }
+    Eigen::VectorXd best = p.c;
+    for (double s = -1.0; s <= 1.0; s += 0.25) {
+      for (double t = -1.0; t <= 1.0; t += 0.25) {
+        const Eigen::VectorXd x = hold->project(p.point(s, t));
+        if ((x - goal).cwiseProduct(scale).norm() < (best - goal).cwiseProduct(scale).norm()) {
+          best = x;
+        }
+      }
+    }
+    search.submit(best);
+  }
 }
