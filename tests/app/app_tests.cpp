@@ -671,7 +671,7 @@ class SumHold : public app::ConstraintProjector {
 
 }  // namespace
 
-TEST_CASE("holds: every cell and every choice lies on the hold; release keeps the data",
+TEST_CASE("holds: every cell and every choice lies on the hold - release keeps the data",
           "[app][holds]") {
   app::Session session(small_settings());
   finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
@@ -731,7 +731,7 @@ TEST_CASE("holds: every cell and every choice lies on the hold; release keeps th
   CHECK((session.current_best() - session.search().x_plus()).norm() < 1e-12);
 }
 
-TEST_CASE("holds are saved with the session and read back; files without them still load",
+TEST_CASE("holds are saved with the session and read back - files without them still load",
           "[app][holds][session-file]") {
   app::Session session(small_settings());
   finish_plane(session, {{0, 0}, {2, 1}, {1, 1}, {2, 2}});
@@ -855,7 +855,7 @@ TEST_CASE("the redo stack is saved with the session and Redo brings each step ba
 }
 
 TEST_CASE(
-    "start over is redone after a reload; files without redo load; a broken redo part is "
+    "start over is redone after a reload - files without redo load - a broken redo part is "
     "reported by field and costs only the redo steps",
     "[app][session-file][redo]") {
   TempDir dir;

@@ -755,7 +755,7 @@ struct InProcessWindow {
 
 }  // namespace
 
-TEST_CASE("the toolbar's rows as drawn head the side column; Close-ups toggles the framing",
+TEST_CASE("the toolbar's rows as drawn head the side column - Close-ups toggles the framing",
           "[gallery][gl]") {
   TempDir dir;
   for (const ImVec2 size : {ImVec2(1280, 720), ImVec2(800, 600), ImVec2(1920, 1080)}) {

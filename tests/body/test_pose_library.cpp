@@ -299,7 +299,7 @@ TEST_CASE("pose library: forearm twist, wrist flexion and head turn", "[pose-lib
   }
 }
 
-TEST_CASE("pose library: a fist needs finger joints; with SMPL-X's hands every finger curls",
+TEST_CASE("pose library: a fist needs finger joints - with SMPL-X's hands every finger curls",
           "[pose-library]") {
   const Skeleton smpl = smpl_skeleton();
   const auto none = body::pose_body(smpl.model, smpl.rest, *body::find_pose("fist"));
