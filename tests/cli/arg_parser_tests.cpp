@@ -26,7 +26,7 @@ TEST_CASE("options, flags and values", "[cli]") {
   CHECK(a.get_double("missing", 2.5) == 2.5);
 }
 
-TEST_CASE("--help is always a flag, whatever the command declares", "[cli]") {
+TEST_CASE("the --help option is always a flag, whatever the command declares", "[cli]") {
   const auto a = parse({"cmd", "--help", "--dims", "3"});
   CHECK(a.has("help"));
   CHECK(a.get_int("dims", 0) == 3);
