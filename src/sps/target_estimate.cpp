@@ -209,29 +209,18 @@ Eigen::MatrixXd target_posterior_covariance(const PreferenceData& data, const Ta
   return symmetric.ldlt().solve(Eigen::MatrixXd::Identity(d, d));
 }
 
-namespace {
-
-// C N^T (N C N^T)^+: how a Gaussian with covariance C moves when N x is learnt, per unit of
-// N x (the Kalman gain of an exact observation). The pseudo-inverse lets dependent or
-// vanishing normals condition on what they do say. Checks the sizes first.
-Eigen::MatrixXd gain_of_holds(const Eigen::MatrixXd& covariance, const Eigen::MatrixXd& normals) {
+Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
+                                       const Eigen::MatrixXd& normals) {
   const Eigen::Index d = covariance.rows();
   require(covariance.cols() == d && covariance.allFinite(),
           "the covariance must be a finite square matrix");
+  if (normals.rows() == 0) return covariance;
   require(normals.cols() == d && normals.allFinite(),
           "the held normals need " + std::to_string(d) + " finite columns");
   const Eigen::MatrixXd cn = covariance * normals.transpose();
+  // The pseudo-inverse (dependent or vanishing normals condition on what they do say).
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> ncn(normals * cn);
-  return ncn.solve(cn.transpose()).transpose();
-}
-
-}  // namespace
-
-Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
-                                       const Eigen::MatrixXd& normals) {
-  if (normals.rows() == 0) return covariance;
-  const Eigen::MatrixXd conditioned =
-      covariance - gain_of_holds(covariance, normals) * normals * covariance;
+  const Eigen::MatrixXd conditioned = covariance - cn * ncn.solve(cn.transpose());
   return 0.5 * (conditioned + conditioned.transpose());
 }
 
@@ -239,11 +228,17 @@ Eigen::VectorXd estimate_given_holds(const Eigen::VectorXd& t, const Eigen::Vect
                                      const Eigen::MatrixXd& covariance,
                                      const Eigen::MatrixXd& normals) {
   const Eigen::Index d = t.size();
-  require(t.allFinite() && nearest.size() == d && nearest.allFinite() && covariance.rows() == d,
-          "the estimate, its nearest held point and the covariance need " + std::to_string(d) +
-              " finite entries");
+  require(t.allFinite() && nearest.size() == d && nearest.allFinite(),
+          "the estimate and its nearest held point need " + std::to_string(d) + " finite entries");
+  require(covariance.rows() == d && covariance.cols() == d && covariance.allFinite(),
+          "the covariance must be a finite " + std::to_string(d) + " x " + std::to_string(d) +
+              " matrix");
   if (normals.rows() == 0) return nearest;
-  return t + gain_of_holds(covariance, normals) * (normals * (nearest - t));
+  require(normals.cols() == d && normals.allFinite(),
+          "the held normals need " + std::to_string(d) + " finite columns");
+  const Eigen::MatrixXd cn = covariance * normals.transpose();
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> ncn(normals * cn);
+  return t + cn * ncn.solve(normals * (nearest - t));
 }
 
 }  // namespace sps

@@ -3,7 +3,6 @@
 // builds the free search's planes (one construction for both).
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -79,15 +78,6 @@ class NothingHeld : public sps::SearchHold {
     return Eigen::MatrixXd::Zero(1, x.size());
   }
 };
-
-// A seeded covariance that is far from isotropic (A A^T plus a little of the identity).
-Eigen::MatrixXd random_covariance(int d, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(d, d);
-  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
-  return a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(d, d);
-}
 
 double largest_difference(const sps::Plane& a, const sps::Plane& b) {
   return std::max({(a.c - b.c).cwiseAbs().maxCoeff(), (a.u - b.u).cwiseAbs().maxCoeff(),
@@ -335,7 +325,11 @@ TEST_CASE("a plane moved onto a hold: centre on it, directions tangent, lengths 
 
 TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest kept",
           "[held][target]") {
-  const Eigen::MatrixXd c = random_covariance(4, 5);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(4, 4);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
+  const Eigen::MatrixXd c = a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(4, 4);
   const Eigen::RowVectorXd n = weights(4).transpose();
   const Eigen::MatrixXd given = sps::covariance_given_holds(c, n);
   // Known exactly along the held quantity, symmetric, never more uncertain than before.
@@ -360,7 +354,11 @@ TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest
 
 TEST_CASE("the estimate given the holds: the posterior's mean on the held surface",
           "[held][target]") {
-  const Eigen::MatrixXd c = random_covariance(5, 8);
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(5, 5);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
+  const Eigen::MatrixXd c = a * a.transpose() + 0.2 * Eigen::MatrixXd::Identity(5, 5);
   const LinearHold hold(weights(5), 0.55);
   const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(5, 0.35, 0.6);
   const Eigen::VectorXd nearest = hold.project(t);
