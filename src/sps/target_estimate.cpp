@@ -224,21 +224,4 @@ Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
   return 0.5 * (conditioned + conditioned.transpose());
 }
 
-Eigen::VectorXd estimate_given_holds(const Eigen::VectorXd& t, const Eigen::VectorXd& nearest,
-                                     const Eigen::MatrixXd& covariance,
-                                     const Eigen::MatrixXd& normals) {
-  const Eigen::Index d = t.size();
-  require(t.allFinite() && nearest.size() == d && nearest.allFinite(),
-          "the estimate and its nearest held point need " + std::to_string(d) + " finite entries");
-  require(covariance.rows() == d && covariance.cols() == d && covariance.allFinite(),
-          "the covariance must be a finite " + std::to_string(d) + " x " + std::to_string(d) +
-              " matrix");
-  if (normals.rows() == 0) return nearest;
-  require(normals.cols() == d && normals.allFinite(),
-          "the held normals need " + std::to_string(d) + " finite columns");
-  const Eigen::MatrixXd cn = covariance * normals.transpose();
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> ncn(normals * cn);
-  return t + cn * ncn.solve(normals * (nearest - t));
-}
-
 }  // namespace sps

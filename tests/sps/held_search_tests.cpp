@@ -352,37 +352,6 @@ TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest
                   std::invalid_argument);
 }
 
-TEST_CASE("the estimate given the holds: the posterior's mean on the held surface",
-          "[held][target]") {
-  std::mt19937_64 rng(8);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(5, 5);
-  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
-  const Eigen::MatrixXd c = a * a.transpose() + 0.2 * Eigen::MatrixXd::Identity(5, 5);
-  const LinearHold hold(weights(5), 0.55);
-  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(5, 0.35, 0.6);
-  const Eigen::VectorXd nearest = hold.project(t);
-  const Eigen::VectorXd n = weights(5);
-  const Eigen::VectorXd given = sps::estimate_given_holds(t, nearest, c, n.transpose());
-  // On the surface, and the Gaussian's conditional mean there, exactly for a linear hold.
-  CHECK(hold.value(given) == Approx(0.55).margin(1e-12));
-  const Eigen::VectorXd exact = t + c * n * ((0.55 - n.dot(t)) / n.dot(c * n));
-  CHECK((given - exact).norm() < 1e-12);
-  // Closer to t than the nearest point in the posterior's own measure (the Mahalanobis
-  // distance), which is what the move is for; an isotropic posterior moves to the nearest.
-  const Eigen::MatrixXd precision = c.inverse();
-  const auto mahalanobis = [&](const Eigen::VectorXd& x) {
-    return (x - t).dot(precision * (x - t));
-  };
-  CHECK(mahalanobis(given) < mahalanobis(nearest));
-  CHECK((sps::estimate_given_holds(t, nearest, Eigen::MatrixXd::Identity(5, 5), n.transpose()) -
-         nearest)
-            .norm() < 1e-12);
-  CHECK((sps::estimate_given_holds(t, nearest, c, Eigen::MatrixXd(0, 5)) - nearest).norm() == 0.0);
-  CHECK_THROWS_AS(sps::estimate_given_holds(t, nearest.head(4), c, n.transpose()),
-                  std::invalid_argument);
-}
-
 TEST_CASE("a held search with a population spans its planes along the uncertainty left",
           "[held][search][target]") {
   const int d = 5;
