@@ -7,13 +7,15 @@
 // first version) showed other planes than the one the model had chosen: for a body's height,
 // which is nearly all in the first (most visible) shape coordinate, the projection swapped
 // most of what made u and v visible for a compensating change of that coordinate, and the
-// held search fell behind the free one (docs/benchmarks.md, Holds). Uncertainty planes
-// (PlaneAxes::kTargetUncertainty) are spanned along the estimate's uncertainty given the held
-// values (target_estimate.hpp, covariance_given_holds), whose axes lie in that tangent space:
-// the paper's construction there had left the held search behind the free one from plane 2
-// (40 people, seeds 2000-2039, mean gap at plane 15 6.94 mm against 5.91 with them). The
-// surface itself is the caller's (a body model's measurements); nothing here knows about
-// bodies.
+// held search fell behind the free one (docs/benchmarks.md, Holds). With an estimate of the
+// design in mind, the centre is that estimate moved onto the surface as the choices allow
+// (target_estimate.hpp, estimate_given_holds) and uncertainty planes
+// (PlaneAxes::kTargetUncertainty) are spanned along its uncertainty given the held values
+// (covariance_given_holds), whose axes lie in that tangent space: the nearest surface point
+// and the paper's construction there had left the held search behind the free one from
+// plane 2 (40 people, seeds 2000-2039, mean gap at plane 15 6.94 mm; 5.91 with the planes,
+// 5.07 with both, free 5.39). The surface itself is the caller's (a body model's
+// measurements); nothing here knows about bodies.
 #pragma once
 
 #include <Eigen/Core>

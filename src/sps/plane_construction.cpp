@@ -153,8 +153,17 @@ Plane sps_plane(const PreferenceModel& model, const Eigen::VectorXd& x_plus,
   base.u = space.project(x_ei - x_plus);
   base.u *= fit_in_box(x_plus, base.u);
   if (base.u.norm() < 1e-6) {
-    // EI peaks at x+ itself (the model is confident): still show a useful neighbourhood.
-    const Eigen::VectorXd dir = 0.25 * random_direction(space, d, rng);
+    // EI peaks at x+ itself (the model is confident), or x_EI lies across a face of the box
+    // that x+ touches: still show a useful neighbourhood.
+    Eigen::VectorXd dir = 0.25 * random_direction(space, d, rng);
+    if (std::max(fit_in_box(x_plus, dir), fit_in_box(x_plus, -dir)) * dir.norm() < 1e-6) {
+      // With a hold, x+ on several faces at once leaves every direction of the tangent space
+      // (each mixes all coordinates) blocked both ways: a held centre at the box's edge came
+      // out as a single point, all nine cells the same body. Move only the coordinates with
+      // room on both sides, as v does below.
+      const Eigen::VectorXd free = (v_bound(x_plus).array() > 1e-9).cast<double>().matrix();
+      dir = 0.25 * random_direction(space.without_coordinates(free), d, rng);
+    }
     const double forward = fit_in_box(x_plus, dir);
     const double backward = fit_in_box(x_plus, -dir);
     base.u = (forward >= backward ? forward : -backward) * dir;

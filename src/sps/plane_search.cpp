@@ -510,7 +510,13 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     // design in mind, made from choices that all lie on the surface, is moved onto it).
     x_plus = hold_->project(x_plus);
     if (target) {
-      x_plus = hold_->project(estimate_target(data_, *target, x_plus));
+      // Moved onto the surface as the choices allow (estimate_given_holds), then projected
+      // the rest of the way (the surface is curved; the move is first order).
+      const Eigen::VectorXd estimate = estimate_target(data_, *target, x_plus);
+      const Eigen::VectorXd given = estimate_given_holds(
+          estimate, hold_->project(estimate), target_posterior_covariance(data_, *target, estimate),
+          hold_->normals(estimate));
+      x_plus = hold_->project(given);
     } else if (mean_centre) {
       const TangentSpace tangent(hold_->normals(x_plus), options_.dims);
       x_plus = hold_->project(

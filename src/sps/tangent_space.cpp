@@ -53,7 +53,13 @@ TangentSpace::TangentSpace(const Eigen::MatrixXd& normals, Eigen::Index dims) {
 
 Eigen::VectorXd TangentSpace::project(const Eigen::VectorXd& d) const {
   // d less its normal part (not P d): exactly d where the normals do not reach.
-  if (normal_projector_.size() > 0) return d - normal_projector_ * d;
+  if (normal_projector_.size() > 0) {
+    const Eigen::VectorXd tangent = d - normal_projector_ * d;
+    // The coordinates taken out stay exactly unchanged, not to rounding: a point on a face of
+    // the box has no room at all for a move of 1e-17 across it, and such a move had left a
+    // held plane at the box's edge without any direction (nine identical cells).
+    return mask_.size() > 0 ? Eigen::VectorXd(tangent.cwiseProduct(mask_)) : tangent;
+  }
   if (mask_.size() > 0) return d.cwiseProduct(mask_);
   return d;
 }
@@ -61,8 +67,14 @@ Eigen::VectorXd TangentSpace::project(const Eigen::VectorXd& d) const {
 Eigen::VectorXd TangentSpace::through(const Eigen::VectorXd& origin,
                                       const Eigen::VectorXd& y) const {
   if (whole()) return y;
-  if (normal_projector_.size() > 0) return y - normal_projector_ * (y - origin);
-  return y - (y - origin).cwiseProduct(Eigen::VectorXd::Ones(y.size()) - mask_);
+  if (normal_projector_.size() == 0) {
+    return y - (y - origin).cwiseProduct(Eigen::VectorXd::Ones(y.size()) - mask_);
+  }
+  Eigen::VectorXd nearest = y - normal_projector_ * (y - origin);
+  for (Eigen::Index k = 0; k < mask_.size(); ++k) {
+    if (mask_(k) <= 0.0) nearest(k) = origin(k);  // exactly, as in project
+  }
+  return nearest;
 }
 
 Eigen::MatrixXd TangentSpace::projector(Eigen::Index dims) const {

@@ -224,4 +224,44 @@ Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
   return 0.5 * (conditioned + conditioned.transpose());
 }
 
+Eigen::VectorXd estimate_given_holds(const Eigen::VectorXd& t, const Eigen::VectorXd& nearest,
+                                     const Eigen::MatrixXd& covariance,
+                                     const Eigen::MatrixXd& normals) {
+  const Eigen::Index d = t.size();
+  require(t.allFinite() && nearest.size() == d && nearest.allFinite(),
+          "the estimate and its nearest held point need " + std::to_string(d) + " finite entries");
+  require(covariance.rows() == d && covariance.cols() == d && covariance.allFinite(),
+          "the covariance must be a finite " + std::to_string(d) + " x " + std::to_string(d) +
+              " matrix");
+  if (normals.rows() == 0) return nearest;
+  require(normals.cols() == d && normals.allFinite(),
+          "the held normals need " + std::to_string(d) + " finite columns");
+  // Known: the held quantities, N x = N nearest, and then every coordinate that the move took
+  // out of the box, at the face it crossed. Without the faces a hold changed far from the
+  // choices (a new height 0.4 of the box away) moved correlated coordinates well outside it,
+  // and the centre clamped back landed on four faces at once.
+  Eigen::MatrixXd known = normals;
+  Eigen::VectorXd values = normals * nearest;
+  Eigen::VectorXd x = t;
+  for (Eigen::Index pass = 0; pass <= d; ++pass) {
+    const Eigen::MatrixXd ck = covariance * known.transpose();
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kck(known * ck);
+    x = t + ck * kck.solve(values - known * t);
+    std::vector<Eigen::Index> outside;
+    for (Eigen::Index k = 0; k < d; ++k) {
+      if (x(k) < 0.0 || x(k) > 1.0) outside.push_back(k);
+    }
+    if (outside.empty()) break;
+    const Eigen::Index rows = known.rows();
+    known.conservativeResize(rows + static_cast<Eigen::Index>(outside.size()), Eigen::NoChange);
+    values.conservativeResize(known.rows());
+    for (std::size_t i = 0; i < outside.size(); ++i) {
+      const Eigen::Index row = rows + static_cast<Eigen::Index>(i);
+      known.row(row) = Eigen::RowVectorXd::Unit(d, outside[i]);
+      values(row) = std::clamp(x(outside[i]), 0.0, 1.0);
+    }
+  }
+  return x.cwiseMax(0.0).cwiseMin(1.0);
+}
+
 }  // namespace sps

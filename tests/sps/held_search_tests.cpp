@@ -274,6 +274,57 @@ TEST_CASE("one plane construction: holding nothing builds the free plane", "[hel
   }
 }
 
+TEST_CASE("the estimate given the holds stays in the box", "[held][target]") {
+  // A hold set far from the choices: the Gaussian's move along correlated coordinates leaves
+  // the box; those coordinates are held at the faces they cross and the rest conditioned.
+  const int d = 5;
+  Eigen::MatrixXd c = Eigen::MatrixXd::Identity(d, d);
+  c(0, 1) = c(1, 0) = 0.9;  // the second coordinate follows the first closely
+  c(0, 2) = c(2, 0) = -0.8;
+  const LinearHold hold(weights(d), 0.95);
+  Eigen::VectorXd t(d);
+  t << 0.2, 0.9, 0.1, 0.5, 0.5;
+  const Eigen::VectorXd n = weights(d);
+  const Eigen::VectorXd unbounded = t + c * n * ((0.95 - n.dot(t)) / n.dot(c * n));
+  REQUIRE_FALSE(inside(unbounded));
+  const Eigen::VectorXd given = sps::estimate_given_holds(t, hold.project(t), c, n.transpose());
+  CHECK(inside(given));
+  CHECK(hold.value(given) == Approx(0.95).margin(1e-9));
+  CHECK(given(1) == Approx(1.0).margin(1e-12));  // pushed to the face it crossed
+  CHECK(given(2) == Approx(0.0).margin(1e-12));
+}
+
+TEST_CASE("a held plane centred on several faces of the box still spans a neighbourhood",
+          "[held][plane]") {
+  // Every tangent direction of a hold mixes all coordinates, so at a centre on three faces
+  // nearly every one leaves the box both ways; the plane came out as a single point (nine
+  // identical cells, and the choice among them taught nothing).
+  const int d = 6;
+  std::mt19937_64 data_rng(41);
+  const sps::PreferenceData data = sps_test::random_data(d, 6, data_rng);
+  const sps::ModelSettings model_settings;
+  const auto model =
+      sps::PreferenceModel::fit(data, model_settings, sps::PreferenceModel(d, model_settings));
+  Eigen::VectorXd x_plus(d);
+  x_plus << 0.6, 0.0, 1.0, 0.4, 0.0, 0.5;
+  const sps::TangentSpace tangent(weights(d).transpose(), d);
+  for (unsigned seed = 0; seed < 8; ++seed) {
+    INFO("seed " << seed);
+    std::mt19937_64 rng(seed);
+    // EI peaks at the centre itself: the fallback direction is the one under test.
+    const sps::Plane plane =
+        sps::sps_plane(model, x_plus, x_plus, model.mean(x_plus), rng, {}, tangent);
+    CHECK(plane.u.norm() > 1e-3);
+    CHECK(plane.v.norm() > 1e-3);
+    CHECK(std::abs(weights(d).dot(plane.u)) < 1e-9);
+    CHECK(std::abs(weights(d).dot(plane.v)) < 1e-9);
+    CHECK(inside(plane.c + plane.u));
+    CHECK(inside(plane.c - plane.u_neg_scale * plane.u));
+    CHECK(inside(plane.c + plane.v));
+    CHECK(inside(plane.c - plane.v));
+  }
+}
+
 TEST_CASE("a search holding nothing makes the free search's planes", "[held][search]") {
   for (const auto method : {sps::Method::kSps, sps::Method::kSls}) {
     INFO(sps::method_name(method));
@@ -349,6 +400,37 @@ TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest
   CHECK((sps::covariance_given_holds(c, Eigen::MatrixXd::Zero(1, 4)) - c).norm() <
         1e-12 * c.norm());
   CHECK_THROWS_AS(sps::covariance_given_holds(c, Eigen::MatrixXd::Ones(1, 3)),
+                  std::invalid_argument);
+}
+
+TEST_CASE("the estimate given the holds: the posterior's mean on the held surface",
+          "[held][target]") {
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(5, 5);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
+  const Eigen::MatrixXd c = a * a.transpose() + 0.2 * Eigen::MatrixXd::Identity(5, 5);
+  const LinearHold hold(weights(5), 0.55);
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(5, 0.35, 0.6);
+  const Eigen::VectorXd nearest = hold.project(t);
+  const Eigen::VectorXd n = weights(5);
+  const Eigen::VectorXd given = sps::estimate_given_holds(t, nearest, c, n.transpose());
+  // On the surface, and the Gaussian's conditional mean there, exactly for a linear hold.
+  CHECK(hold.value(given) == Approx(0.55).margin(1e-12));
+  const Eigen::VectorXd exact = t + c * n * ((0.55 - n.dot(t)) / n.dot(c * n));
+  CHECK((given - exact).norm() < 1e-12);
+  // Closer to t than the nearest point in the posterior's own measure (the Mahalanobis
+  // distance), which is what the move is for; an isotropic posterior moves to the nearest.
+  const Eigen::MatrixXd precision = c.inverse();
+  const auto mahalanobis = [&](const Eigen::VectorXd& x) {
+    return (x - t).dot(precision * (x - t));
+  };
+  CHECK(mahalanobis(given) < mahalanobis(nearest));
+  CHECK((sps::estimate_given_holds(t, nearest, Eigen::MatrixXd::Identity(5, 5), n.transpose()) -
+         nearest)
+            .norm() < 1e-12);
+  CHECK((sps::estimate_given_holds(t, nearest, c, Eigen::MatrixXd(0, 5)) - nearest).norm() == 0.0);
+  CHECK_THROWS_AS(sps::estimate_given_holds(t, nearest.head(4), c, n.transpose()),
                   std::invalid_argument);
 }
 
