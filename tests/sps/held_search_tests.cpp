@@ -64,6 +64,16 @@ Eigen::VectorXd perceptual_scale(int d) {
   return s;
 }
 
+// A seeded d x d covariance with correlated coordinates: A A^T for a Gaussian A, plus `ridge`
+// on the diagonal so that it is well conditioned.
+Eigen::MatrixXd random_covariance(int d, unsigned seed, double ridge) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd a(d, d);
+  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
+  return a * a.transpose() + ridge * Eigen::MatrixXd::Identity(d, d);
+}
+
 bool inside(const Eigen::VectorXd& x) {
   return x.minCoeff() >= -1e-9 && x.maxCoeff() <= 1.0 + 1e-9;
 }
@@ -376,11 +386,7 @@ TEST_CASE("a plane moved onto a hold: centre on it, directions tangent, lengths 
 
 TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest kept",
           "[held][target]") {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(4, 4);
-  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
-  const Eigen::MatrixXd c = a * a.transpose() + 0.1 * Eigen::MatrixXd::Identity(4, 4);
+  const Eigen::MatrixXd c = random_covariance(4, 5, 0.1);
   const Eigen::RowVectorXd n = weights(4).transpose();
   const Eigen::MatrixXd given = sps::covariance_given_holds(c, n);
   // Known exactly along the held quantity, symmetric, never more uncertain than before.
@@ -405,11 +411,7 @@ TEST_CASE("the estimate's uncertainty given the holds: none along them, the rest
 
 TEST_CASE("the estimate given the holds: the posterior's mean on the held surface",
           "[held][target]") {
-  std::mt19937_64 rng(8);
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd a(5, 5);
-  for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
-  const Eigen::MatrixXd c = a * a.transpose() + 0.2 * Eigen::MatrixXd::Identity(5, 5);
+  const Eigen::MatrixXd c = random_covariance(5, 8, 0.2);
   const LinearHold hold(weights(5), 0.55);
   const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(5, 0.35, 0.6);
   const Eigen::VectorXd nearest = hold.project(t);
