@@ -1023,6 +1023,14 @@ TEST_CASE("holds through the controller: every cell held, choices learnt, releas
     CHECK(std::abs(number(c.space(), cell.x, "height_m") - 1.80) <= 0.01);
     CHECK(std::abs(number(c.space(), cell.x, "mass_kg") - 85.0) <= 1.5);
   }
+  // Still nine bodies to choose from: a centre moved onto the new holds once sat on four
+  // faces of the box and the plane there came out as one point, nine identical cells.
+  {
+    const auto& cells = c.session().cells();
+    double spread = 0.0;
+    for (const auto& cell : cells) spread = std::max(spread, (cell.x - cells[4].x).norm());
+    CHECK(spread > 0.05);
+  }
 
   // Releasing the holds keeps every choice.
   const int before_release = c.session().search().data().preference_count();
