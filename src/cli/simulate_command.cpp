@@ -8,6 +8,8 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "cli/arg_parser.hpp"
@@ -157,13 +159,23 @@ int run(int argc, char** argv) {
   const bool zoom_prefs = args.has("zoom-prefs");
   const bool quiet = args.has("quiet");
   sps::SearchOptions options = cli::read_search_options(args);
+  if (dims < 1 || dims > sps::kMaxSearchDims) {
+    throw cli::ArgError("--dims must be 1-" + std::to_string(sps::kMaxSearchDims));
+  }
   options.dims = dims;
   if (user != "argmax" && user != "zoom") throw cli::ArgError("--user: use argmax or zoom");
   if (trials < 1 || iterations < 1) throw cli::ArgError("--trials and --iterations must be >= 1");
   if (grid < 3 || grid % 2 == 0) throw cli::ArgError("--grid must be odd and at least 3");
   if (levels < 1) throw cli::ArgError("--levels must be at least 1");
   if (resolution < 2) throw cli::ArgError("--resolution must be at least 2");
-  const auto g = sps::make_test_function(function, dims, optimum);
+  // The function's own checks (its name, dimensions, optimum) are about the command line.
+  const auto g = [&] {
+    try {
+      return sps::make_test_function(function, dims, optimum);
+    } catch (const std::invalid_argument& e) {
+      throw cli::ArgError(std::string("--function: ") + e.what());
+    }
+  }();
 
   cli::SimulationResults results(iterations, seed, false);
   for (int trial = 0; trial < trials; ++trial) {

@@ -98,6 +98,17 @@ sps::SearchOptions read_search_options(const ArgParser& args) {
       args.get_double("uncertainty-min-lengths", options.uncertainty_min_lengths);
   options.choice_region_slack = args.get_double("choice-region-slack", options.choice_region_slack);
   check_uncertainty_size(options);
+  {
+    // Every option read here by the search's own rule (sps::validate_options), as a bad
+    // argument; the dimension comes later, from --dims or the design space.
+    sps::SearchOptions read = options;
+    read.dims = 1;
+    try {
+      sps::validate_options(read);
+    } catch (const std::invalid_argument& e) {
+      throw ArgError(std::string("search options: ") + e.what());
+    }
+  }
   const std::string best_text = args.get_or("current-best", "posterior-mean");
   if (best_text == "last-selection") {
     options.current_best = sps::CurrentBest::kLastSelection;

@@ -89,12 +89,15 @@ for args in "--method nope" "--function nope" "--dims 0" "--grid 4" "--optimum 2
             "--function rosenbrock --optimum 0.5" "--function body --user argmax" \
             "--function body --jnd-mm -1" "--function body --target-betas 1 2 3 4 5 6 7 8 9 10 11" \
             "--function body --model /nonexistent.npz" "--function body --grid 7" \
-            "--function body --hold weight" "--function body --zoom-factors 0" \
+            "--function body --hold weight" "--function body --hold mass --hold mass" \
+            "--function body --zoom-factors 0" "--function body --threads 0" "--dims 100000" \
             "--function body --jnd-px 2 --jnd-mm 5" "--function body --jnd-px 2 --cell-px 4" \
             "--function body --jnd-px -1" \
             "--function body --zoom-factors 0.7,1.5" "--function body --zoom-factors x"; do
   if err=$("$bin" simulate $args --trials 1 --iterations 1 2>&1); then fail "accepted: $args"; fi
   grep -qi "error" <<<"$err" || fail "no error message for: $args"
+  # A message for the user, not a bug report ("internal error" names a bug).
+  ! grep -qi "internal error" <<<"$err" || fail "internal error for: $args: $err"
 done
 # The pixel person: 2 px of a 210 px cell are 20.4 mm, for the person, the session and the
 # look-alike count alike.
@@ -139,5 +142,6 @@ for args in "--target bogus" "--jnd-delta-e -1" "--grid 4" "--user argmax" \
     fail "accepted: --function photo $args"
   fi
   grep -qi "error" <<<"$err" || fail "no error message for: --function photo $args"
+  ! grep -qi "internal error" <<<"$err" || fail "internal error for: --function photo $args: $err"
 done
 echo "ok"
