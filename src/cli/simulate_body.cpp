@@ -245,16 +245,13 @@ int run_body_simulation(const ArgParser& args) {
   // --hold NAME (repeatable): every grid keeps the target body's NAME (the user knows it).
   const auto hold_names = args.get_all("hold");
   std::shared_ptr<const body::Model> hold_model;
-  for (std::size_t i = 0; i < hold_names.size(); ++i) {
-    const std::string& name = hold_names[i];
+  std::set<std::string> held_once;
+  for (const auto& name : hold_names) {
     if (body::find_measurement(name) == nullptr) {
       throw ArgError("--hold: unknown measurement '" + name +
                      "' (known: " + body::measurement_names() + ")");
     }
-    if (std::find(hold_names.begin(), hold_names.begin() + static_cast<std::ptrdiff_t>(i), name) !=
-        hold_names.begin() + static_cast<std::ptrdiff_t>(i)) {
-      throw ArgError("--hold: " + name + " is given twice");
-    }
+    if (!held_once.insert(name).second) throw ArgError("--hold: " + name + " is given twice");
   }
   if (!hold_names.empty()) hold_model = std::make_shared<const body::Model>(model);
   const auto clock = std::make_shared<HoldClock>();

@@ -25,6 +25,21 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("target model: " + what);
 }
 
+// The rows of `normals` as held quantities' gradients in d dimensions (none: nothing held).
+void require_normals(const Eigen::MatrixXd& normals, Eigen::Index d) {
+  require(normals.rows() == 0 || (normals.cols() == d && normals.allFinite()),
+          "the held normals need " + std::to_string(d) + " finite columns");
+}
+
+// Conditioning a Gaussian with covariance C on linear observations K x: the gain
+// C K^T (K C K^T)^+, with the pseudo-inverse so that dependent or vanishing rows condition on
+// what they do say. The mean moves by gain (values - K mean), the covariance loses gain K C.
+Eigen::MatrixXd conditioning_gain(const Eigen::MatrixXd& covariance, const Eigen::MatrixXd& known) {
+  const Eigen::MatrixXd ck = covariance * known.transpose();
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kck(known * ck);
+  return kck.solve(ck.transpose()).transpose();  // K C K^T is symmetric
+}
+
 }  // namespace
 
 void validate_target_model(const TargetModel& model, int dims) {
@@ -214,13 +229,10 @@ Eigen::MatrixXd covariance_given_holds(const Eigen::MatrixXd& covariance,
   const Eigen::Index d = covariance.rows();
   require(covariance.cols() == d && covariance.allFinite(),
           "the covariance must be a finite square matrix");
+  require_normals(normals, d);
   if (normals.rows() == 0) return covariance;
-  require(normals.cols() == d && normals.allFinite(),
-          "the held normals need " + std::to_string(d) + " finite columns");
-  const Eigen::MatrixXd cn = covariance * normals.transpose();
-  // The pseudo-inverse (dependent or vanishing normals condition on what they do say).
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> ncn(normals * cn);
-  const Eigen::MatrixXd conditioned = covariance - cn * ncn.solve(cn.transpose());
+  const Eigen::MatrixXd conditioned =
+      covariance - conditioning_gain(covariance, normals) * normals * covariance;
   return 0.5 * (conditioned + conditioned.transpose());
 }
 
@@ -233,9 +245,8 @@ Eigen::VectorXd estimate_given_holds(const Eigen::VectorXd& t, const Eigen::Vect
   require(covariance.rows() == d && covariance.cols() == d && covariance.allFinite(),
           "the covariance must be a finite " + std::to_string(d) + " x " + std::to_string(d) +
               " matrix");
+  require_normals(normals, d);
   if (normals.rows() == 0) return nearest;
-  require(normals.cols() == d && normals.allFinite(),
-          "the held normals need " + std::to_string(d) + " finite columns");
   // Known: the held quantities, N x = N nearest, and then every coordinate that the move took
   // out of the box, at the face it crossed. Without the faces a hold changed far from the
   // choices (a new height 0.4 of the box away) moved correlated coordinates well outside it,
@@ -244,9 +255,7 @@ Eigen::VectorXd estimate_given_holds(const Eigen::VectorXd& t, const Eigen::Vect
   Eigen::VectorXd values = normals * nearest;
   Eigen::VectorXd x = t;
   for (Eigen::Index pass = 0; pass <= d; ++pass) {
-    const Eigen::MatrixXd ck = covariance * known.transpose();
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kck(known * ck);
-    x = t + ck * kck.solve(values - known * t);
+    x = t + conditioning_gain(covariance, known) * (values - known * t);
     std::vector<Eigen::Index> outside;
     for (Eigen::Index k = 0; k < d; ++k) {
       if (x(k) < 0.0 || x(k) > 1.0) outside.push_back(k);

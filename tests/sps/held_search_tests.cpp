@@ -3,6 +3,7 @@
 // builds the free search's planes (one construction for both).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -72,6 +73,14 @@ Eigen::MatrixXd random_covariance(int d, unsigned seed, double ridge) {
   Eigen::MatrixXd a(d, d);
   for (Eigen::Index i = 0; i < a.size(); ++i) a.data()[i] = normal(rng);
   return a * a.transpose() + ridge * Eigen::MatrixXd::Identity(d, d);
+}
+
+// A search's options in d dimensions with its own seed, the rest the defaults.
+sps::SearchOptions seeded_options(int d, std::uint64_t seed) {
+  sps::SearchOptions o;
+  o.dims = d;
+  o.seed = seed;
+  return o;
 }
 
 bool inside(const Eigen::VectorXd& x) {
@@ -152,9 +161,7 @@ TEST_CASE("a held search builds every plane on the surface, in its tangent space
           "[held][search]") {
   const int d = 6;
   auto hold = std::make_shared<const LinearHold>(weights(d), 0.55);
-  sps::SearchOptions o;
-  o.dims = d;
-  o.seed = 11;
+  sps::SearchOptions o = seeded_options(d, 11);
   sps::PlaneSearch search(o);
   search.set_perceptual_scale(perceptual_scale(d));
   const sps::Plane unheld = search.current_plane();
@@ -197,9 +204,7 @@ TEST_CASE("a held search builds every plane on the surface, in its tangent space
 
 TEST_CASE("without a hold the search is unchanged by the hold code", "[held][search]") {
   const int d = 5;
-  sps::SearchOptions o;
-  o.dims = d;
-  o.seed = 3;
+  sps::SearchOptions o = seeded_options(d, 3);
   sps::PlaneSearch a(o);
   sps::PlaneSearch b(o);
   a.set_perceptual_scale(perceptual_scale(d));
@@ -339,9 +344,7 @@ TEST_CASE("a search holding nothing makes the free search's planes", "[held][sea
   for (const auto method : {sps::Method::kSps, sps::Method::kSls}) {
     INFO(sps::method_name(method));
     const int d = 5;
-    sps::SearchOptions o;
-    o.dims = d;
-    o.seed = 9;
+    sps::SearchOptions o = seeded_options(d, 9);
     o.method = method;
     sps::PlaneSearch free(o);
     sps::PlaneSearch held(o);
@@ -440,9 +443,7 @@ TEST_CASE("a held search with a population spans its planes along the uncertaint
           "[held][search][target]") {
   const int d = 5;
   auto hold = std::make_shared<const LinearHold>(weights(d), 0.55);
-  sps::SearchOptions o;
-  o.dims = d;
-  o.seed = 3;
+  sps::SearchOptions o = seeded_options(d, 3);
   o.threads = 1;
   o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
   sps::PlaneSearch search(o);
