@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz/, clang with -fsanitize=fuzzer,address,undefined)
-# into build/fuzz and runs each for SECONDS (default 60), one at a time, from the committed
+# into build/fuzz and runs each for SECONDS (default 60), nproc at a time, from the committed
 # seed corpora (tests/fuzz/corpus/<target>/; new inputs go to build/fuzz/corpus/<target>/).
 # Prints executions and crashes per target; exits 1 if any target crashed (the input is kept
 # under build/fuzz/artifacts/ -- turn it into an ordinary regression test). Exits 77 without
@@ -41,17 +41,13 @@ cmake --build "$build" -j"$(nproc)" >"$build.build.log" 2>&1 ||
   { tail -50 "$build.build.log"; echo "fuzz: building the fuzz targets failed"; exit 1; }
 
 mkdir -p "$build/artifacts"
-status=0
-summary=()
-for t in "${targets[@]}"; do
-  seeds="tests/fuzz/corpus/$t"
-  work="$build/corpus/$t"
+# One target's run: its summary line goes to $build/$t.summary, a finding also to stdout.
+fuzz_target() {
+  local t=$1 seeds="tests/fuzz/corpus/$1" work="$build/corpus/$1" log="$build/$1.log"
+  local stamp="$build/$1.started" rc execs crashes
   mkdir -p "$work"
-  log="$build/$t.log"
-  stamp="$build/$t.started"
   touch "$stamp"
   echo "fuzz: $t for ${seconds}s (seeds: $(ls "$seeds" | wc -l) files in $seeds)"
-  # One process, one core; an input that needs over 2 GB or 30 s is a finding too.
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
   UBSAN_OPTIONS=print_stacktrace=1 \
     nice "$build/fuzz_$t" -max_total_time="$seconds" -print_final_stats=1 -timeout=30 \
@@ -60,14 +56,35 @@ for t in "${targets[@]}"; do
   rc=$?
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   crashes=$(find "$build/artifacts" -name "$t-*" -newer "$stamp" | wc -l)
-  line="$t: ${execs:-?} executions in ${seconds}s, exit $rc, $crashes crash/timeout/oom input(s)"
-  summary+=("$line")
+  echo "$t: ${execs:-?} executions in ${seconds}s, exit $rc, $crashes crash/timeout/oom input(s)" \
+    >"$build/$t.summary"
   if [ $rc -ne 0 ]; then
-    status=1
-    echo "fuzz: FINDING in $t:"
-    grep -m 20 -E "ERROR|SUMMARY|runtime error|abort|Test unit written" "$log" || true
+    { echo "fuzz: FINDING in $t:"
+      grep -m 20 -E "ERROR|SUMMARY|runtime error|abort|Test unit written" "$log" || true; } |
+      flock "$build/artifacts" cat
   fi
+  return $rc
+}
+# As many targets at once as there are cores: each runs single-threaded for the same
+# SECONDS, so the smoke run takes SECONDS per nproc targets instead of per target (in CI the
+# other tests have mostly finished by the time the sanitizer build is done).
+jobs_max=$(nproc)
+running=0
+status=0
+for t in "${targets[@]}"; do
+  if [ $running -ge "$jobs_max" ]; then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+  fuzz_target "$t" &
+  running=$((running + 1))
+done
+while [ $running -gt 0 ]; do
+  wait -n || status=1
+  running=$((running - 1))
 done
 echo "fuzz summary:"
-printf '  %s\n' "${summary[@]}"
+for t in "${targets[@]}"; do
+  printf '  %s\n' "$(cat "$build/$t.summary" 2>/dev/null || echo "$t: no summary (the run did not finish)")"
+done
 exit $status

@@ -93,7 +93,8 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --no-mean-centre    centre planes on the best observed point, not the posterior-mean maximum
   --no-target-model   centre planes on the posterior-mean maximum, not on the estimate of the
                       body in mind (choices as distances to it, body population as its prior)
-  --choice-temperature-mm T  that estimate's softmax temperature (default 3)
+  --choice-temperature-mm T  that estimate's softmax temperature (default: the person's
+                      threshold, --jnd-mm, or what the window assumes at --cell-px; at least 3)
   --perceptual-btl S  with the perceptual scale: the BTL temperature (default 1; plain 0.01)
   --compare-mm D      zoom-level clicks count only over cells differing by >= D mm (default 40)
   --zoom-factors F,.. zoom steps the session tries in order (default 0.7,0.8; the paper: 0.5)

@@ -142,7 +142,8 @@ std::array<std::vector<int>, 5> face_regions(const GeneratedModel& m, const mc::
 // Floating-point results differ in their last bits between CPUs (libm and vector code paths),
 // so the regenerated model is compared with the committed one array by array within a
 // tolerance, never byte for byte. Only the largest difference is reported, never the arrays.
-TEST_CASE("the generator reproduces assets/body_{female,male,neutral}.npz within 1e-5", "[model]") {
+TEST_CASE("the generator reproduces assets/body_{female,male,neutral}.npz within 1e-5",
+          "[model][generated]") {
   REQUIRE(all_generated().size() == 3);
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);
@@ -191,7 +192,8 @@ TEST_CASE("the generator reproduces assets/body_{female,male,neutral}.npz within
 }
 #endif
 
-TEST_CASE("the template is a closed, consistently wound manifold of 8k-20k vertices", "[model]") {
+TEST_CASE("the template is a closed, consistently wound manifold of 8k-20k vertices",
+          "[model][generated]") {
   const GeneratedModel& m = generated();
   const mc::Tris faces = faces_of(m);
   const mc::Topology t = mc::topology(static_cast<int>(m.v_template.rows()), faces);
@@ -212,7 +214,7 @@ TEST_CASE("the template is a closed, consistently wound manifold of 8k-20k verti
 }
 
 TEST_CASE("the rig: SMPL-X's 55 joints, convex regressor rows, normalised sparse weights",
-          "[model]") {
+          "[model][generated]") {
   const GeneratedModel& m = generated();
   const Eigen::Index V = m.v_template.rows();
   REQUIRE(m.j_regressor.rows() == 55);
@@ -268,7 +270,7 @@ TEST_CASE("the rig: SMPL-X's 55 joints, convex regressor rows, normalised sparse
 }
 
 TEST_CASE("the texture layout: charts by body part, in [0, 1]^2, none flipped, low distortion",
-          "[model][uv]") {
+          "[model][uv][generated]") {
   const GeneratedModel& m = generated();
   const auto& uv = m.uv;
   REQUIRE(uv.faces.size() == static_cast<std::size_t>(m.faces.rows()));
@@ -301,7 +303,8 @@ TEST_CASE("the texture layout: charts by body part, in [0, 1]^2, none flipped, l
   CHECK(d.packing > 0.35);
 }
 
-TEST_CASE("the shape spaces: 16 components, betas ~ N(0, 1), variance shares", "[model]") {
+TEST_CASE("the shape spaces: 16 components, betas ~ N(0, 1), variance shares",
+          "[model][generated]") {
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);
     const Eigen::Index K = m.shapedirs.cols();
@@ -338,7 +341,7 @@ TEST_CASE("the shape spaces: 16 components, betas ~ N(0, 1), variance shares", "
 // A grid cell shows a 1.8 m body in 400 px (1 px ~ 4.5 mm): each of the first 10 components
 // must move the surface visibly at +-3 SD.
 TEST_CASE("each of the first 10 components moves the surface by >= 8 mm mean, 25 mm max",
-          "[model]") {
+          "[model][generated]") {
   for (const GeneratedModel& m : all_generated()) {
     const Eigen::Index V = m.v_template.rows();
     for (int k = 0; k < 10; ++k) {
@@ -361,7 +364,7 @@ TEST_CASE("each of the first 10 components moves the surface by >= 8 mm mean, 25
 // other nine leave stature alone, component 2 changes mass by >= 15 kg with stature within
 // 3 cm, and components 1 at -1.5 and 2 at +3 make a body at least 8 cm shorter and 10 kg
 // heavier than the mean (female and male models).
-TEST_CASE("component 1 is stature, component 2 mass at that stature", "[model]") {
+TEST_CASE("component 1 is stature, component 2 mass at that stature", "[model][generated]") {
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);
     const mc::Tris faces = faces_of(m);
@@ -401,7 +404,7 @@ TEST_CASE("component 1 is stature, component 2 mass at that stature", "[model]")
 }
 
 TEST_CASE("bodies at +-3 per component and at random betas in [-3, 3]^10 are plausible",
-          "[model]") {
+          "[model][generated]") {
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);
     const mc::Tris faces = faces_of(m);
@@ -449,7 +452,8 @@ TEST_CASE("bodies at +-3 per component and at random betas in [-3, 3]^10 are pla
   }
 }
 
-TEST_CASE("no male body shows breasts, and the female model's breasts span a range", "[model]") {
+TEST_CASE("no male body shows breasts, and the female model's breasts span a range",
+          "[model][generated]") {
   // Each of the first 10 components at -3 and +3, and 500 uniform points of the [-3, 3]^10 box.
   std::vector<Eigen::VectorXf> betas = test_betas();
   betas.resize(20);
@@ -486,7 +490,8 @@ TEST_CASE("no male body shows breasts, and the female model's breasts span a ran
   CHECK(*women_hi - *women_lo > 0.03);
 }
 
-TEST_CASE("each sex's bodies are measured against their own survey draw", "[model][survey]") {
+TEST_CASE("each sex's bodies are measured against their own survey draw",
+          "[model][survey][generated]") {
   // The generator's calibration (survey_calibration.hpp): the girths the tool measures on a
   // sample of each population, against the girths each person was drawn with.
   for (const std::string name : {"female", "male"}) {
@@ -559,7 +564,8 @@ TEST_CASE("people drawn from the survey statistics are near bodies of their sex'
   }
 }
 
-TEST_CASE("the committed assets load through body::load_model like an SMPL file", "[model]") {
+TEST_CASE("the committed assets load through body::load_model like an SMPL file",
+          "[model][generated]") {
   for (const GeneratedModel& m : all_generated()) {
     INFO("model " << m.name);
     const body::Model model = body::load_model(asset_path(m.name), 0);
