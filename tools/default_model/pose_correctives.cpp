@@ -184,8 +184,8 @@ double rotation_share_strength(int joint) {
   if (joint == kLeftShoulder || joint == kRightShoulder) return 0.9;
   // The head turns on a neck whose thickness the first component (size) scales: with the whole
   // share, the neutral model's c1-3 body gained 8.1 % at 60 degrees of head turn (its mean body
-  // 2.0 %, c1+3 -2.8 %), as posedirs are one set for all bodies. 0.9 centres the three mean
-  // bodies (-0.2 to -0.4 %) and keeps every +-3 SD body of components 1-3 within 5.5 %.
+  // 1.7 %, c1+3 -2.8 %), as posedirs are one set for all bodies. 0.9 brings the three mean
+  // bodies to -0.4 to -0.5 % and keeps every +-3 SD body of components 1-3 within 5.5 %.
   if (joint == kHead) return 0.9;
   if (joint >= kSmplxHandsBegin && joint < kSmplxJoints) {
     // Per finger joint, knuckle to tip, the fingers' then the thumb's: with one strength for
