@@ -48,6 +48,7 @@ fuzz_target() {
   mkdir -p "$work"
   touch "$stamp"
   echo "fuzz: $t for ${seconds}s (seeds: $(ls "$seeds" | wc -l) files in $seeds)"
+  # One process, one core; an input that needs over 2 GB or 30 s is a finding too.
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
   UBSAN_OPTIONS=print_stacktrace=1 \
     nice "$build/fuzz_$t" -max_total_time="$seconds" -print_final_stats=1 -timeout=30 \
@@ -69,6 +70,8 @@ fuzz_target() {
 # SECONDS, so the smoke run takes SECONDS per nproc targets instead of per target (in CI the
 # other tests have mostly finished by the time the sanitizer build is done).
 jobs_max=$(nproc)
+# A summary left by an earlier run must not stand in for a run that died before writing one.
+for t in "${targets[@]}"; do rm -f "$build/$t.summary"; done
 running=0
 status=0
 for t in "${targets[@]}"; do
