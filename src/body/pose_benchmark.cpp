@@ -57,11 +57,21 @@ PoseFigures measure_posed_body(const Model& model, const PosedBody& posed,
 }
 
 ModelBenchmark run_pose_benchmark(const Model& model, const std::string& label, int components,
-                                  const PoseTargets& targets) {
+                                  const PoseTargets& targets,
+                                  const std::vector<std::string>& only) {
   const auto start = std::chrono::steady_clock::now();
   if (static_cast<int>(model.joint_names.size()) != model.joint_count()) {
     throw ModelError(model.name + ": the pose benchmark finds joints by name, and this model's " +
                      std::to_string(model.joint_count()) + " joints have none");
+  }
+  const auto asked = [&only](const std::string& name) {
+    return only.empty() || std::find(only.begin(), only.end(), name) != only.end();
+  };
+  for (const std::string& name : only) {
+    if (find_pose(name) == nullptr) {
+      throw ModelError("no pose named '" + name +
+                       "' in the pose benchmark (its poses: " + pose_names() + ")");
+    }
   }
   ModelBenchmark out;
   out.label = label;
@@ -75,8 +85,10 @@ ModelBenchmark run_pose_benchmark(const Model& model, const std::string& label, 
   for (const PoseDefinition& pose : pose_library()) {
     PoseResult r;
     r.pose = &pose;
-    r.available = true;
-    for (const BodyMesh& mesh : shaped) {
+    r.asked = r.available = asked(pose.name);
+    if (!r.asked) r.reason = "not asked for";
+    for (std::size_t b = 0; r.available && b < shaped.size(); ++b) {
+      const BodyMesh& mesh = shaped[b];
       const PosedBody posed = pose_body(model, mesh, pose);
       if (!posed.available) {
         r.available = false;
@@ -185,7 +197,7 @@ std::string pose_benchmark_markdown(const std::vector<ModelBenchmark>& models,
   md += "\n\n";
   for (const auto& m : models) {
     for (const auto& r : m.poses) {
-      if (!r.available) {
+      if (!r.available && r.asked) {
         md += "- " + m.label + ", " + r.pose->name + ": not available (" + r.reason + ")\n";
       }
     }

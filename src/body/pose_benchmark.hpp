@@ -35,6 +35,7 @@ std::vector<BenchBody> benchmark_bodies(const Model& model, int components);
 struct PoseResult {
   const PoseDefinition* pose = nullptr;
   bool available = false;
+  bool asked = true;                  // false: left out by run_pose_benchmark's `only`
   std::string reason;                 // when not available
   std::vector<PoseFigures> per_body;  // in benchmark_bodies' order
   // Over the bodies: the volume change with the largest magnitude (sign kept) and the mean
@@ -58,10 +59,13 @@ struct ModelBenchmark {
   double seconds = 0.0;           // wall time of the run
 };
 
-// Runs every pose of the library on the bodies. Throws ModelError if the model has no joint
-// names or `components` is out of range.
+// Runs the poses of the library named in `only` (every pose when it is empty) on the bodies;
+// the others are reported as not available ("not asked for"), so `poses` stays in library
+// order. Throws ModelError if the model has no joint names, `components` is out of range or a
+// name in `only` is no pose of the library.
 ModelBenchmark run_pose_benchmark(const Model& model, const std::string& label, int components,
-                                  const PoseTargets& targets = {});
+                                  const PoseTargets& targets = {},
+                                  const std::vector<std::string>& only = {});
 
 // The figures of one posed body (used by the benchmark and the contact sheet's labels).
 PoseFigures measure_posed_body(const Model& model, const PosedBody& posed,

@@ -11,6 +11,7 @@
 #include "body/mesh_normals.hpp"
 #include "body/model_loader.hpp"
 #include "body/pose_benchmark.hpp"
+#include "body/pose_library.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/pose_sheet.hpp"
@@ -31,7 +32,7 @@ const char* const kUsage =
     "usage: sequential-gallery bench-pose --model female|male|neutral|FILE.npz [--model ...]\n"
     "                                     [--label NAME ...] [--components N] [--out REPORT.md]\n"
     "                                     [--sheet SHEET.png] [--sheet-model NAME ...]\n"
-    "                                     [--cell-size PX]\n"
+    "                                     [--cell-size PX] [--pose NAME ...]\n"
     "Poses each model's mean body and its +-3 SD bodies of components 1..N (default 3) in the\n"
     "pose library and reports, per pose, the volume change of the limb region around the\n"
     "joint, the sharpest fold and the new self-intersections (worst body, mean in brackets)\n"
@@ -40,7 +41,8 @@ const char* const kUsage =
     "--label gives each its column title, in the same order (default: the --model text).\n"
     "Prints the markdown report; --out also writes it; --sheet draws each model's mean body in\n"
     "every pose into one labelled PNG (square cells of --cell-size pixels, default 320), or\n"
-    "only the models named by --sheet-model (labels).\n";
+    "only the models named by --sheet-model (labels). --pose runs only the poses named (the\n"
+    "others show as \"-\"; the sheet still draws every pose).\n";
 
 // An argument as a shell would need it to read it back: single-quoted unless it is plain.
 std::string shell_quoted(const std::string& arg) {
@@ -93,7 +95,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   args.reject_unknown(
-      {"help", "model", "label", "components", "out", "sheet", "sheet-model", "cell-size"});
+      {"help", "model", "label", "components", "out", "sheet", "sheet-model", "cell-size", "pose"});
   const std::vector<std::string> names = args.get_all("model");
   if (names.empty()) {
     throw cli::ArgError("bench-pose: give at least one --model\n" + std::string(kUsage));
@@ -118,6 +120,13 @@ int run(int argc, char** argv) {
   const int cell_px = args.get_int("cell-size", 320);
   if (cell_px < 64 || cell_px > 2048) {
     throw cli::ArgError("bench-pose: --cell-size must be 64..2048 pixels");
+  }
+  const std::vector<std::string> poses = args.get_all("pose");
+  for (const auto& p : poses) {
+    if (body::find_pose(p) == nullptr) {
+      throw cli::ArgError("bench-pose: --pose '" + p + "' is not a pose of the benchmark (" +
+                          body::pose_names() + ")");
+    }
   }
   const auto out = args.get("out");
   const auto sheet = args.get("sheet");
@@ -151,9 +160,11 @@ int run(int argc, char** argv) {
   const body::PoseTargets targets;
   std::vector<body::ModelBenchmark> results;
   for (std::size_t i = 0; i < models.size(); ++i) {
-    results.push_back(body::run_pose_benchmark(models[i], labels[i], components, targets));
+    results.push_back(body::run_pose_benchmark(models[i], labels[i], components, targets, poses));
     std::fprintf(stderr, "bench-pose: %s: %zu bodies x %zu poses in %.1f s\n", labels[i].c_str(),
-                 results.back().bodies.size(), body::pose_library().size(), results.back().seconds);
+                 results.back().bodies.size(),
+                 poses.empty() ? body::pose_library().size() : poses.size(),
+                 results.back().seconds);
   }
 
   std::string command = "sequential-gallery bench-pose";

@@ -54,6 +54,19 @@ expect "$out" "bodies: mean c1-3 c1\+3 c2-3 c2\+3 c3-3 c3\+3;"
 # Numbers, not placeholders, on a pose every SMPL-family skeleton can make.
 expect "$out" "^\| elbow-130 \| [-+][0-9]+\.[0-9] \([-+][0-9]+\.[0-9]\) \| [0-9]+ \([0-9]+\) \| [0-9]+ \([0-9.]+\) \| (pass|\*\*fail\*\*)"
 
+echo "== --pose runs only the poses named; the others show as not run, without a reason line"
+out=$("$exe" bench-pose --model "$dir/cyl.npz" --components 1 --pose elbow-130 --pose knee-130)
+for p in elbow-130 knee-130; do  # measured: a fold and a count of intersections
+  expect "$out" "^\| $p \| [^|]+ \| [0-9]+ \([0-9]+\) \| [0-9]+ \([0-9.]+\) \|"
+done
+expect "$out" "^\| shoulder-flex-90 \| - \| - \| - \| n/a \|"
+expect "$out" "^\| \*\*passing\*\* \| \| \| \| [0-2] of 2 \|"
+if grep -q "not asked for" <<<"$out"; then fail "the poses left out are listed as unavailable"; fi
+if out=$("$exe" bench-pose --model "$dir/cyl.npz" --pose elbow-13 2>&1); then
+  fail "bench-pose --pose elbow-13 succeeded"
+fi
+expect "$out" "--pose 'elbow-13' is not a pose of the benchmark \(shoulder-abduct-80, "
+
 echo "== mistakes are named"
 for bad in "--model $dir/missing.npz" "--model female --label a --label b" \
   "--model female --components 40" "--model female --sheet-model male" ""; do
