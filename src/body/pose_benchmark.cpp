@@ -56,6 +56,15 @@ PoseFigures measure_posed_body(const Model& model, const PosedBody& posed,
                       pose.hand_contact ? hand_joints(model) : std::vector<int>{});
 }
 
+void require_known_poses(const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    if (find_pose(name) == nullptr) {
+      throw ModelError("'" + name + "' is not a pose of the benchmark (its poses: " + pose_names() +
+                       ")");
+    }
+  }
+}
+
 ModelBenchmark run_pose_benchmark(const Model& model, const std::string& label, int components,
                                   const PoseTargets& targets,
                                   const std::vector<std::string>& only) {
@@ -67,12 +76,7 @@ ModelBenchmark run_pose_benchmark(const Model& model, const std::string& label, 
   const auto asked = [&only](const std::string& name) {
     return only.empty() || std::find(only.begin(), only.end(), name) != only.end();
   };
-  for (const std::string& name : only) {
-    if (find_pose(name) == nullptr) {
-      throw ModelError("no pose named '" + name +
-                       "' in the pose benchmark (its poses: " + pose_names() + ")");
-    }
-  }
+  require_known_poses(only);
   ModelBenchmark out;
   out.label = label;
   out.model_name = model.name;

@@ -59,6 +59,10 @@ struct ModelBenchmark {
   double seconds = 0.0;           // wall time of the run
 };
 
+// Throws ModelError naming the first of `names` that is no pose of the library (and listing
+// its poses).
+void require_known_poses(const std::vector<std::string>& names);
+
 // Runs the poses of the library named in `only` (every pose when it is empty) on the bodies;
 // the others are reported as not available ("not asked for"), so `poses` stays in library
 // order. Throws ModelError if the model has no joint names, `components` is out of range or a

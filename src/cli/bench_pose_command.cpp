@@ -11,7 +11,6 @@
 #include "body/mesh_normals.hpp"
 #include "body/model_loader.hpp"
 #include "body/pose_benchmark.hpp"
-#include "body/pose_library.hpp"
 #include "cli/arg_parser.hpp"
 #include "cli/command_registry.hpp"
 #include "cli/pose_sheet.hpp"
@@ -122,12 +121,7 @@ int run(int argc, char** argv) {
     throw cli::ArgError("bench-pose: --cell-size must be 64..2048 pixels");
   }
   const std::vector<std::string> poses = args.get_all("pose");
-  for (const auto& p : poses) {
-    if (body::find_pose(p) == nullptr) {
-      throw cli::ArgError("bench-pose: --pose '" + p + "' is not a pose of the benchmark (" +
-                          body::pose_names() + ")");
-    }
-  }
+  body::require_known_poses(poses);  // before any model is loaded: a typo fails at once
   const auto out = args.get("out");
   const auto sheet = args.get("sheet");
   if (sheet && !cli::pose_sheet_writer()) {
@@ -161,10 +155,11 @@ int run(int argc, char** argv) {
   std::vector<body::ModelBenchmark> results;
   for (std::size_t i = 0; i < models.size(); ++i) {
     results.push_back(body::run_pose_benchmark(models[i], labels[i], components, targets, poses));
-    std::fprintf(stderr, "bench-pose: %s: %zu bodies x %zu poses in %.1f s\n", labels[i].c_str(),
-                 results.back().bodies.size(),
-                 poses.empty() ? body::pose_library().size() : poses.size(),
-                 results.back().seconds);
+    const auto& r = results.back();
+    const auto ran = std::count_if(r.poses.begin(), r.poses.end(),
+                                   [](const body::PoseResult& p) { return p.asked; });
+    std::fprintf(stderr, "bench-pose: %s: %zu bodies x %ld poses in %.1f s\n", labels[i].c_str(),
+                 r.bodies.size(), static_cast<long>(ran), r.seconds);
   }
 
   std::string command = "sequential-gallery bench-pose";

@@ -65,7 +65,7 @@ if grep -q "not asked for" <<<"$out"; then fail "the poses left out are listed a
 if out=$("$exe" bench-pose --model "$dir/cyl.npz" --pose elbow-13 2>&1); then
   fail "bench-pose --pose elbow-13 succeeded"
 fi
-expect "$out" "--pose 'elbow-13' is not a pose of the benchmark \(shoulder-abduct-80, "
+expect "$out" "'elbow-13' is not a pose of the benchmark \(its poses: shoulder-abduct-80, "
 
 echo "== mistakes are named"
 for bad in "--model $dir/missing.npz" "--model female --label a --label b" \
