@@ -84,6 +84,8 @@ std::vector<BodyMesh> evaluate_batch(const Model& model, const std::vector<Eigen
 // The same, writing into existing meshes so their storage is reused from frame to frame
 // (no allocation or page faults when the sizes already match).
 void evaluate_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& mesh);
+// The vertices and joints only (normals left empty): what measuring a body reads.
+BodyMesh evaluate_shape(const Model& model, const Eigen::VectorXf& betas);
 void evaluate_batch_into(const Model& model, const std::vector<Eigen::VectorXf>& betas,
                          std::vector<BodyMesh>& meshes);
 

@@ -73,9 +73,7 @@ bool has_joint_cache(const Model& model) {
          model.joint_shapedirs.cols() == model.shapedirs.cols();
 }
 
-}  // namespace
-
-void evaluate_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& mesh) {
+void shape_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& mesh) {
   check_betas(model, betas);
   const Eigen::Index V = model.v_template.rows();
   const Eigen::Index J = model.j_regressor.rows();
@@ -91,7 +89,19 @@ void evaluate_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& m
     mesh.joints.resize(J, 3);
     mesh.joints.noalias() = model.j_regressor * mesh.vertices;
   }
+}
+
+}  // namespace
+
+void evaluate_into(const Model& model, const Eigen::VectorXf& betas, BodyMesh& mesh) {
+  shape_into(model, betas, mesh);
   compute_vertex_normals(mesh.vertices, model.faces, mesh.normals);
+}
+
+BodyMesh evaluate_shape(const Model& model, const Eigen::VectorXf& betas) {
+  BodyMesh mesh;
+  shape_into(model, betas, mesh);
+  return mesh;
 }
 
 BodyMesh evaluate(const Model& model, const Eigen::VectorXf& betas) {

@@ -17,6 +17,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
@@ -32,10 +33,22 @@ namespace body {
 
 namespace {
 
+// False when `p` lies clearly (a micrometre) outside the piece's bounding box, so that its
+// convex hull cannot hold it either: the arms' pieces of a torso slice skip their hulls.
+bool may_surround(const SlicePiece& piece, const Eigen::Vector2d& p) {
+  if (piece.points.empty()) return false;
+  Eigen::Vector2d lo = piece.points.front(), hi = lo;
+  for (const auto& q : piece.points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  constexpr double kMargin = 1e-6;
+  return p.x() >= lo.x() - kMargin && p.x() <= hi.x() + kMargin && p.y() >= lo.y() - kMargin &&
+         p.y() <= hi.y() + kMargin;
+}
+
 // The girth of the slice piece that surrounds the axis (0 if none).
 double piece_girth(const std::vector<SlicePiece>& pieces, const Eigen::Vector2d& axis) {
   double best = 0.0;
   for (const auto& piece : pieces) {
+    if (!may_surround(piece, axis)) continue;
     const auto hull = convex_hull(piece.points);
     if (!hull_contains(hull, axis)) continue;
     best = std::max(best, polygon_perimeter(hull));
@@ -66,6 +79,40 @@ void for_each_triangle(const Vertices& vertices, const Faces& faces, Visit&& vis
     visit(a, b, c);
   }
 }
+
+// The same for the triangles whose bounding box meets the box [lo, hi]: a ray or a vertical
+// line tests the few faces near it instead of all. Callers widen the box by far more than
+// rounding (a micrometre), so no face the full pass would count is left out.
+template <class Visit>
+void for_each_triangle_in_box(const Vertices& vertices, const Faces& faces,
+                              const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Visit&& visit) {
+  const Eigen::Index V = vertices.rows();
+  // The box in single precision, rounded outwards (the vertices are floats).
+  float flo[3], fhi[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    flo[axis] =
+        std::nextafter(static_cast<float>(lo[axis]), -std::numeric_limits<float>::infinity());
+    fhi[axis] =
+        std::nextafter(static_cast<float>(hi[axis]), std::numeric_limits<float>::infinity());
+  }
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const std::uint32_t i = faces(f, 0), j = faces(f, 1), k = faces(f, 2);
+    if (i >= V || j >= V || k >= V) continue;
+    bool misses = false;
+    for (int axis = 0; axis < 3 && !misses; ++axis) {
+      const float p = vertices(i, axis), q = vertices(j, axis), r = vertices(k, axis);
+      misses = (p < flo[axis] && q < flo[axis] && r < flo[axis]) ||
+               (p > fhi[axis] && q > fhi[axis] && r > fhi[axis]);
+    }
+    if (misses) continue;
+    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
+    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
+    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
+    visit(a, b, c);
+  }
+}
+
+constexpr double kBoxMargin = 1e-6;
 
 // Six times the signed enclosed volume: positive when the faces turn counter-clockwise seen
 // from outside.
@@ -120,8 +167,22 @@ std::array<Eigen::Vector3d, 2> first_crossings(const Vertices& vertices, const F
                                                double reach) {
   std::array<double, 2> best = {std::numeric_limits<double>::infinity(),
                                 std::numeric_limits<double>::infinity()};
-  for_each_triangle(
-      vertices, faces,
+  // Only faces near the two rays' segments can be crossed within `reach`.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Vector3d end = origins[i] + reach * directions[i];
+    lo = lo.cwiseMin(origins[i]).cwiseMin(end);
+    hi = hi.cwiseMax(origins[i]).cwiseMax(end);
+  }
+  if (!lo.allFinite() || !hi.allFinite()) {
+    lo.setConstant(-std::numeric_limits<double>::infinity());
+    hi.setConstant(std::numeric_limits<double>::infinity());
+  }
+  lo.array() -= kBoxMargin;
+  hi.array() += kBoxMargin;
+  for_each_triangle_in_box(
+      vertices, faces, lo, hi,
       [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
         // Moller and Trumbore 1997 (J. Graphics Tools 2(1):21).
         const Eigen::Vector3d e1 = b - a, e2 = c - a;
@@ -185,27 +246,40 @@ double arm_length(const Model& model, const BodyMesh& mesh,
 // surface (a thigh of 80 cm girth has a radius under 13 cm), nearer than most of the torso.
 constexpr double kLimbRadius = 0.25;
 
-// The girth of the slice across `direction` at `origin` (the piece around the origin); 0 when
-// the plane misses the body there.
-double girth_across(const BodyMesh& mesh, const Faces& faces, const Eigen::Vector3d& origin,
-                    const Eigen::Vector3d& direction) {
-  return piece_girth(slice_mesh(mesh.vertices, faces, plane_across(origin, direction), kLimbRadius),
-                     Eigen::Vector2d::Zero());
-}
-
-// How far the slice piece around `origin` reaches along `outward` (a unit vector in the plane).
-double reach_across(const BodyMesh& mesh, const Faces& faces, const Eigen::Vector3d& origin,
-                    const Eigen::Vector3d& direction, const Eigen::Vector3d& outward) {
-  const SlicePlane plane = plane_across(origin, direction);
-  const Eigen::Vector2d out(outward.dot(plane.u), outward.dot(plane.v));
-  double best = 0.0;
-  for (const auto& piece : slice_mesh(mesh.vertices, faces, plane, kLimbRadius)) {
-    const auto hull = convex_hull(piece.points);
-    if (!hull_contains(hull, Eigen::Vector2d::Zero())) continue;
-    for (const auto& p : hull) best = std::max(best, p.dot(out));
+// The slices across the limbs and the neck that one body's measurements take, cut in one call
+// (the levels across one bone share its direction, so they cost about one pass over the
+// faces): add() each plane, cut(), then read each plane's girth or reach.
+class LimbSlices {
+ public:
+  int add(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
+    planes_.push_back(plane_across(origin, direction));
+    return static_cast<int>(planes_.size()) - 1;
   }
-  return best;
-}
+  void cut(const BodyMesh& mesh, const Faces& faces) {
+    pieces_ = slice_mesh(mesh.vertices, faces, planes_, kLimbRadius);
+  }
+  // The girth of the slice piece around the plane's origin; 0 when the plane misses the body.
+  double girth(int i) const {
+    return piece_girth(pieces_[static_cast<std::size_t>(i)], Eigen::Vector2d::Zero());
+  }
+  // How far that piece reaches along `outward` (a unit vector in the plane).
+  double reach(int i, const Eigen::Vector3d& outward) const {
+    const SlicePlane& plane = planes_[static_cast<std::size_t>(i)];
+    const Eigen::Vector2d out(outward.dot(plane.u), outward.dot(plane.v));
+    double best = 0.0;
+    for (const auto& piece : pieces_[static_cast<std::size_t>(i)]) {
+      if (!may_surround(piece, Eigen::Vector2d::Zero())) continue;
+      const auto hull = convex_hull(piece.points);
+      if (!hull_contains(hull, Eigen::Vector2d::Zero())) continue;
+      for (const auto& p : hull) best = std::max(best, p.dot(out));
+    }
+    return best;
+  }
+
+ private:
+  std::vector<SlicePlane> planes_;
+  std::vector<std::vector<SlicePiece>> pieces_;
+};
 
 // A bone: the segment from joint `from` to joint `to` ("left_knee" -> "left_ankle").
 struct Bone {
@@ -226,53 +300,44 @@ Bone bone(const Model& model, const BodyMesh& mesh, const std::string& from,
   return result;
 }
 
-// The largest girth across `b` at the fractions `ts` of its length.
-double largest_girth(const BodyMesh& mesh, const Faces& faces, const Bone& b,
-                     std::initializer_list<double> ts) {
-  double best = 0.0;
-  for (const double t : ts) best = std::max(best, girth_across(mesh, faces, b.at(t), b.b - b.a));
-  return best;
-}
-
 // The limb girths and the bideltoid breadth (see measurements.hpp); `crotch` is the crotch's
 // absolute height (NaN if none).
 void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces, double H,
                    double crotch, unsigned bands, Measurements& m) {
-  if ((bands & kNeckBand) != 0) {
-    // The narrowest girth along the middle of the neck: below it the trapezius widens the
-    // slice, above it the jaw; where the SMPL-family joints put the neck's middle varies.
-    const Bone neck = bone(model, mesh, "neck", "head");
-    m.neck = kNaN;
-    if (neck.found) {
-      double narrowest = std::numeric_limits<double>::infinity();
-      for (const double t : {0.3, 0.4, 0.5, 0.6, 0.7}) {
-        const double g = girth_across(mesh, faces, neck.at(t), neck.b - neck.a);
-        if (g > 0.0) narrowest = std::min(narrowest, g);
-      }
-      if (std::isfinite(narrowest)) m.neck = narrowest;
-    }
-  }
-  double upper_arm = 0.0, deltoids = 0.0, thigh = 0.0, calf = 0.0;
+  LimbSlices slices;
+  // The narrowest girth along the middle of the neck: below it the trapezius widens the
+  // slice, above it the jaw; where the SMPL-family joints put the neck's middle varies.
+  std::vector<int> neck_levels;
+  const Bone neck = bone(model, mesh, "neck", "head");
+  if ((bands & kNeckBand) != 0 && neck.found)
+    for (const double t : {0.3, 0.4, 0.5, 0.6, 0.7})
+      neck_levels.push_back(slices.add(neck.at(t), neck.b - neck.a));
+  // Per side (left, right): the upper arm's levels (its largest girth), the deltoid's (its
+  // farthest reach outward), the thigh's level and the calf's levels (its largest girth).
+  struct Side {
+    std::vector<int> upper_arm, deltoid, calf;
+    int thigh = -1;
+    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  };
+  std::array<Side, 2> sides;
   const double centre_x = mesh.vertices.col(0).cast<double>().mean();
   bool arms = true, legs = true;
-  for (const char* side : {"left", "right"}) {
-    const std::string s(side);
+  for (int i = 0; i < 2; ++i) {
+    const std::string s(i == 0 ? "left" : "right");
+    Side& side = sides[static_cast<std::size_t>(i)];
     if ((bands & kArmBand) != 0) {
       const Bone arm = bone(model, mesh, s + "_shoulder", s + "_elbow");
       if (!arm.found) {
         arms = false;
       } else {
-        upper_arm += largest_girth(mesh, faces, arm, {0.4, 0.5, 0.6});
+        for (const double t : {0.4, 0.5, 0.6})
+          side.upper_arm.push_back(slices.add(arm.at(t), arm.b - arm.a));
         // Outward: the body's side direction (+x for the left side of an SMPL-family body
         // facing +z) made perpendicular to the humerus.
         const Eigen::Vector3d axis = (arm.b - arm.a).normalized();
         const Eigen::Vector3d side_x(arm.a.x() >= centre_x ? 1.0 : -1.0, 0.0, 0.0);
-        const Eigen::Vector3d outward = (side_x - side_x.dot(axis) * axis).normalized();
-        double reach = 0.0;
-        for (const double t : {0.1, 0.2, 0.3}) {
-          reach = std::max(reach, reach_across(mesh, faces, arm.at(t), axis, outward));
-        }
-        deltoids += reach;
+        side.outward = (side_x - side_x.dot(axis) * axis).normalized();
+        for (const double t : {0.1, 0.2, 0.3}) side.deltoid.push_back(slices.add(arm.at(t), axis));
       }
     }
     if ((bands & kLegBand) != 0) {
@@ -287,17 +352,48 @@ void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces,
         const double drop = femur.a.y() - femur.b.y();
         if (std::isfinite(crotch) && drop > 1e-6) t = (femur.a.y() - (crotch - 0.01 * H)) / drop;
         t = std::clamp(t, 0.05, 0.5);
-        thigh += girth_across(mesh, faces, femur.at(t), femur.b - femur.a);
-        calf += largest_girth(mesh, faces, shin, {0.2, 0.3, 0.4, 0.5});
+        side.thigh = slices.add(femur.at(t), femur.b - femur.a);
+        for (const double u : {0.2, 0.3, 0.4, 0.5})
+          side.calf.push_back(slices.add(shin.at(u), shin.b - shin.a));
       }
     }
   }
+  slices.cut(mesh, faces);
+  const auto largest = [&](const std::vector<int>& levels) {
+    double best = 0.0;
+    for (const int level : levels) best = std::max(best, slices.girth(level));
+    return best;
+  };
+  if ((bands & kNeckBand) != 0) {
+    m.neck = kNaN;
+    double narrowest = std::numeric_limits<double>::infinity();
+    for (const int level : neck_levels) {
+      const double g = slices.girth(level);
+      if (g > 0.0) narrowest = std::min(narrowest, g);
+    }
+    if (std::isfinite(narrowest)) m.neck = narrowest;
+  }
   if ((bands & kArmBand) != 0) {
+    double upper_arm = 0.0, deltoids = 0.0;
+    for (const Side& side : sides) {
+      if (!arms) break;
+      upper_arm += largest(side.upper_arm);
+      double reach = 0.0;
+      for (const int level : side.deltoid)
+        reach = std::max(reach, slices.reach(level, side.outward));
+      deltoids += reach;
+    }
     m.upper_arm = arms ? 0.5 * upper_arm : kNaN;
     const double joints = shoulder_joint_distance(model, mesh);
     m.bideltoid = arms && std::isfinite(joints) ? joints + deltoids : kNaN;
   }
   if ((bands & kLegBand) != 0) {
+    double thigh = 0.0, calf = 0.0;
+    for (const Side& side : sides) {
+      if (!legs) break;
+      thigh += slices.girth(side.thigh);
+      calf += largest(side.calf);
+    }
     m.thigh = legs ? 0.5 * thigh : kNaN;
     m.calf = legs ? 0.5 * calf : kNaN;
   }
@@ -307,8 +403,11 @@ void measure_limbs(const Model& model, const BodyMesh& mesh, const Faces& faces,
 // below `ceiling` (absolute y); NaN if none.
 double crotch_y(const Vertices& vertices, const Faces& faces, double x, double z, double ceiling) {
   double best = -std::numeric_limits<double>::infinity();
-  for_each_triangle(
-      vertices, faces,
+  // Only faces whose footprint holds (x, z) can be crossed by the vertical line.
+  const double inf = std::numeric_limits<double>::infinity();
+  for_each_triangle_in_box(
+      vertices, faces, Eigen::Vector3d(x - kBoxMargin, -inf, z - kBoxMargin),
+      Eigen::Vector3d(x + kBoxMargin, inf, z + kBoxMargin),
       [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
         // Barycentric coordinates of (x, z) in the triangle's projection on the floor.
         const double area = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
@@ -418,7 +517,7 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
 
 Measurements measure(const Model& model, const Eigen::VectorXf& betas, bool girths,
                      unsigned bands) {
-  return measure(model, evaluate(model, betas), girths, bands);
+  return measure(model, evaluate_shape(model, betas), girths, bands);
 }
 
 const std::vector<MeasurementKind>& measurement_kinds() {

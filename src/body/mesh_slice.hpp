@@ -48,5 +48,11 @@ SlicePlane plane_across(const Eigen::Vector3d& origin, const Eigen::Vector3d& di
 std::vector<SlicePiece> slice_mesh(const Vertices& vertices, const Faces& faces,
                                    const SlicePlane& plane,
                                    double radius = std::numeric_limits<double>::infinity());
+// The same for several planes (result i for planes[i]); planes that share a normal (the levels
+// across one limb) find the faces they may cut in one pass over the faces, which makes a limb's
+// several slices cost little more than one.
+std::vector<std::vector<SlicePiece>> slice_mesh(
+    const Vertices& vertices, const Faces& faces, const std::vector<SlicePlane>& planes,
+    double radius = std::numeric_limits<double>::infinity());
 
 }  // namespace body

@@ -2,7 +2,13 @@
 // perimeter), and an arm beside the torso must not count.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <set>
+#include <utility>
+#include <vector>
 
 #include "body/convex_hull.hpp"
 #include "body/measurements.hpp"
@@ -355,6 +361,99 @@ TEST_CASE("slices at many heights in one pass equal the slices one at a time",
   }
   CHECK(pieces > 20);         // the body was cut (torso, arms, legs)
   CHECK(all.back().empty());  // above the head
+}
+
+namespace {
+
+// Every point a pass over all faces cuts with the plane (a corner on the plane counts as
+// above; with a finite radius only faces with a corner within it of the origin), sorted: the
+// reference the batched slices must reproduce.
+std::vector<Eigen::Vector2d> brute_force_cut(const body::Vertices& vertices,
+                                             const body::Faces& faces,
+                                             const body::SlicePlane& plane, double radius) {
+  auto distance = [&](std::uint32_t i) {
+    return (vertices.row(i).cast<double>().transpose() - plane.origin).dot(plane.normal);
+  };
+  auto near = [&](std::uint32_t i) {
+    return (vertices.row(i).cast<double>().transpose() - plane.origin).norm() <= radius;
+  };
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const std::uint32_t v[3] = {faces(f, 0), faces(f, 1), faces(f, 2)};
+    if (!near(v[0]) && !near(v[1]) && !near(v[2])) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = v[e], b = v[(e + 1) % 3];
+      if ((distance(a) >= 0.0) != (distance(b) >= 0.0))
+        edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& [a, b] : edges) {
+    const double t = distance(a) / (distance(a) - distance(b));
+    const Eigen::Vector3d pa = vertices.row(a).cast<double>().transpose();
+    const Eigen::Vector3d pb = vertices.row(b).cast<double>().transpose();
+    const Eigen::Vector3d q = pa + t * (pb - pa) - plane.origin;
+    points.emplace_back(q.dot(plane.u), q.dot(plane.v));
+  }
+  return points;
+}
+
+void sort_points(std::vector<Eigen::Vector2d>& points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+}
+
+}  // namespace
+
+TEST_CASE("slices across many planes in one call cut what a pass over every face cuts",
+          "[measurements][slice]") {
+  const body::Model model = body::load_builtin_model("male", 10);
+  Eigen::VectorXf betas(10);
+  betas << -2.0f, 1.5f, 2.5f, -0.5f, 1.0f, -3.0f, 0.4f, 2.0f, -1.2f, 0.0f;
+  const body::BodyMesh mesh = body::evaluate(model, betas);
+  auto joint = [&](const char* name) {
+    for (std::size_t j = 0; j < model.joint_names.size(); ++j)
+      if (model.joint_names[j] == name) return Eigen::Vector3d(mesh.joints.row(j).cast<double>());
+    FAIL("no joint " << name);
+    return Eigen::Vector3d();
+  };
+  const Eigen::Vector3d shoulder = joint("left_shoulder"), elbow = joint("left_elbow");
+  const Eigen::Vector3d neck = joint("neck"), head = joint("head");
+  std::vector<body::SlicePlane> planes;
+  // Levels across the upper arm, some with the bone's direction normalised once more (a normal
+  // an ulp or so away: the same group), the neck's, a tilted plane through the belly, and one
+  // that misses the body.
+  for (const double t : {0.1, 0.3, 0.5, 0.7})
+    planes.push_back(body::plane_across(shoulder + t * (elbow - shoulder), elbow - shoulder));
+  const Eigen::Vector3d axis = (elbow - shoulder).normalized();
+  for (const double t : {0.2, 0.4})
+    planes.push_back(body::plane_across(shoulder + t * (elbow - shoulder), axis));
+  for (const double t : {0.3, 0.6})
+    planes.push_back(body::plane_across(neck + t * (head - neck), head - neck));
+  planes.push_back(
+      body::plane_across(Eigen::Vector3d(0.0, 1.0, 0.05), Eigen::Vector3d(0.3, 1.0, -0.2)));
+  planes.push_back(body::plane_across(Eigen::Vector3d(0.0, 5.0, 0.0), Eigen::Vector3d::UnitY()));
+  for (const double radius : {0.25, std::numeric_limits<double>::infinity()}) {
+    const auto all = body::slice_mesh(mesh.vertices, model.faces, planes, radius);
+    REQUIRE(all.size() == planes.size());
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      INFO("plane " << k << ", radius " << radius);
+      std::vector<Eigen::Vector2d> got;
+      for (const auto& piece : all[k])
+        got.insert(got.end(), piece.points.begin(), piece.points.end());
+      std::vector<Eigen::Vector2d> want =
+          brute_force_cut(mesh.vertices, model.faces, planes[k], radius);
+      if (k + 1 < planes.size()) CHECK(want.size() >= 20);  // each but the last cuts the body
+      REQUIRE(got.size() == want.size());
+      sort_points(got);
+      sort_points(want);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < got.size(); ++i)
+        worst = std::max(worst, (got[i] - want[i]).norm());
+      CHECK(worst < 1e-12);
+    }
+  }
 }
 
 TEST_CASE("measure: one girth band alone reads the same as all bands", "[measurements][slice]") {
