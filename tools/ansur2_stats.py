@@ -16,9 +16,9 @@ Statistics", Technical Report NATICK/TR-15/007, U.S. Army Natick Soldier Researc
 Development and Engineering Center, 2014. Public release data (U.S. government work).
 """
 import csv
+import math
+import os
 import sys
-
-import numpy as np
 
 # Column name in the CSV -> identifier in the C++ table. Lengths are millimetres in the CSV
 # (written as centimetres); weightkg is in tenths of a kilogram (written as kilograms).
@@ -56,29 +56,58 @@ MEASURES = [
 
 
 def read(path):
-    with open(path, newline="", encoding="latin-1") as f:
-        rows = list(csv.DictReader(f))
+    try:
+        with open(path, newline="", encoding="latin-1") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit(f"{path}: cannot be read ({e.strerror})")
     if not rows:
         sys.exit(f"{path}: no rows")
-    missing = [c for c, _ in MEASURES if c not in rows[0]]
+    columns = [c for c, _ in MEASURES]
+    missing = [c for c in columns if c not in rows[0]]
     if missing:
         sys.exit(f"{path}: missing columns {missing}")
-    data = np.array([[float(r[c]) for c, _ in MEASURES] for r in rows])
-    return data / 10.0  # mm -> cm, tenths of kg -> kg
+    # mm -> cm, tenths of kg -> kg; one list per column
+    data = []
+    for c in columns:
+        values = []
+        for i, r in enumerate(rows):
+            try:
+                values.append(float(r[c]) / 10.0)
+            except (TypeError, ValueError):
+                sys.exit(f"{path}: row {i + 2}, column {c}: {r[c]!r} is not a number")
+            if not math.isfinite(values[-1]):
+                sys.exit(f"{path}: row {i + 2}, column {c}: {r[c]!r} is not a finite number")
+        data.append(values)
+    return data
+
+
+def mean_of(xs):
+    return math.fsum(xs) / len(xs)
+
+
+def sd_of(xs):
+    m = mean_of(xs)
+    return math.sqrt(math.fsum((x - m) ** 2 for x in xs) / (len(xs) - 1))
+
+
+def corr_of(xs, ys):
+    mx, my = mean_of(xs), mean_of(ys)
+    sxy = math.fsum((x - mx) * (y - my) for x, y in zip(xs, ys))
+    sxx = math.fsum((x - mx) ** 2 for x in xs)
+    syy = math.fsum((y - my) ** 2 for y in ys)
+    return sxy / math.sqrt(sxx * syy)
 
 
 def emit(out, label, data):
-    mean = data.mean(axis=0)
-    sd = data.std(axis=0, ddof=1)
-    corr = np.corrcoef(data, rowvar=False)
-    out.append(f"// {label}: n = {len(data)}")
+    out.append(f"// {label}: n = {len(data[0])}")
     out.append(f"constexpr SurveyTable k{label}{{")
-    out.append(f"    {len(data)},")
-    out.append("    {{" + ", ".join(f"{m:.2f}" for m in mean) + "}},")
-    out.append("    {{" + ", ".join(f"{s:.2f}" for s in sd) + "}},")
+    out.append(f"    {len(data[0])},")
+    out.append("    {{" + ", ".join(f"{mean_of(c):.2f}" for c in data) + "}},")
+    out.append("    {{" + ", ".join(f"{sd_of(c):.2f}" for c in data) + "}},")
     out.append("    {{")
-    for row in corr:
-        out.append("        " + ", ".join(f"{r:.3f}" for r in row) + ",")
+    for a in data:
+        out.append("        " + ", ".join(f"{corr_of(a, b):.3f}" for b in data) + ",")
     out.append("    }}};")
     out.append("")
 
@@ -110,9 +139,12 @@ def main():
             "};", ""]
     emit(out, "Female", female)
     emit(out, "Male", male)
-    with open(path, "w") as f:
+    # Written whole or not at all: a half-written table would not compile.
+    partial = path + ".partial"
+    with open(partial, "w") as f:
         f.write("\n".join(out))
-    print(f"wrote {path}: {len(MEASURES)} measures, {len(female)} women, {len(male)} men")
+    os.replace(partial, path)
+    print(f"wrote {path}: {len(MEASURES)} measures, {len(female[0])} women, {len(male[0])} men")
 
 
 if __name__ == "__main__":
