@@ -65,28 +65,37 @@ double torso_girth(const BodyMesh& mesh, const Faces& faces, double y, double ax
 
 namespace {
 
-// Calls visit(a, b, c) with each triangle's corners in double precision; faces that name a
-// vertex beyond the mesh are skipped (a loaded model's faces are validated, this keeps a
-// measurement from reading out of bounds on a mismatched mesh all the same).
-template <class Visit>
-void for_each_triangle(const Vertices& vertices, const Faces& faces, Visit&& visit) {
+// Calls visit(a, b, c) with the corners in double precision of each triangle whose vertex
+// indices i, j, k pass keep(i, j, k); faces that name a vertex beyond the mesh are skipped (a
+// loaded model's faces are validated, this keeps a measurement from reading out of bounds on
+// a mismatched mesh all the same).
+template <class Keep, class Visit>
+void for_each_triangle_where(const Vertices& vertices, const Faces& faces, Keep&& keep,
+                             Visit&& visit) {
   const Eigen::Index V = vertices.rows();
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    if (faces(f, 0) >= V || faces(f, 1) >= V || faces(f, 2) >= V) continue;
-    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
-    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
-    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
+    const std::uint32_t i = faces(f, 0), j = faces(f, 1), k = faces(f, 2);
+    if (i >= V || j >= V || k >= V || !keep(i, j, k)) continue;
+    const Eigen::Vector3d a = vertices.row(i).cast<double>().transpose();
+    const Eigen::Vector3d b = vertices.row(j).cast<double>().transpose();
+    const Eigen::Vector3d c = vertices.row(k).cast<double>().transpose();
     visit(a, b, c);
   }
 }
 
-// The same for the triangles whose bounding box meets the box [lo, hi]: a ray or a vertical
-// line tests the few faces near it instead of all. Callers widen the box by far more than
-// rounding (a micrometre), so no face the full pass would count is left out.
+// Every triangle.
+template <class Visit>
+void for_each_triangle(const Vertices& vertices, const Faces& faces, Visit&& visit) {
+  for_each_triangle_where(
+      vertices, faces, [](std::uint32_t, std::uint32_t, std::uint32_t) { return true; }, visit);
+}
+
+// The triangles whose bounding box meets the box [lo, hi]: a ray or a vertical line tests the
+// few faces near it instead of all. Callers widen the box by far more than rounding (a
+// micrometre), so no face the full pass would count is left out.
 template <class Visit>
 void for_each_triangle_in_box(const Vertices& vertices, const Faces& faces,
                               const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, Visit&& visit) {
-  const Eigen::Index V = vertices.rows();
   // The box in single precision, rounded outwards (the vertices are floats).
   float flo[3], fhi[3];
   for (int axis = 0; axis < 3; ++axis) {
@@ -95,21 +104,16 @@ void for_each_triangle_in_box(const Vertices& vertices, const Faces& faces,
     fhi[axis] =
         std::nextafter(static_cast<float>(hi[axis]), std::numeric_limits<float>::infinity());
   }
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const std::uint32_t i = faces(f, 0), j = faces(f, 1), k = faces(f, 2);
-    if (i >= V || j >= V || k >= V) continue;
-    bool misses = false;
-    for (int axis = 0; axis < 3 && !misses; ++axis) {
+  const auto meets = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
+    for (int axis = 0; axis < 3; ++axis) {
       const float p = vertices(i, axis), q = vertices(j, axis), r = vertices(k, axis);
-      misses = (p < flo[axis] && q < flo[axis] && r < flo[axis]) ||
-               (p > fhi[axis] && q > fhi[axis] && r > fhi[axis]);
+      if ((p < flo[axis] && q < flo[axis] && r < flo[axis]) ||
+          (p > fhi[axis] && q > fhi[axis] && r > fhi[axis]))
+        return false;
     }
-    if (misses) continue;
-    const Eigen::Vector3d a = vertices.row(faces(f, 0)).cast<double>().transpose();
-    const Eigen::Vector3d b = vertices.row(faces(f, 1)).cast<double>().transpose();
-    const Eigen::Vector3d c = vertices.row(faces(f, 2)).cast<double>().transpose();
-    visit(a, b, c);
-  }
+    return true;
+  };
+  for_each_triangle_where(vertices, faces, meets, visit);
 }
 
 constexpr double kBoxMargin = 1e-6;
