@@ -221,7 +221,13 @@ BODY_VARIANTS = [
             "temperature (5 mm, `app::choice_temperature_for_jnd_mm`; with the 3 mm before, "
             "a mean gap of 6.38 mm at plane 10, 5.28 at plane 15, a median of 5.30 at plane 15 "
             "and a median saved body of 4.99; the sps-diagonal, sps-random and sls rows "
-            "changed with it, the sps-mean-centre and sps-plain rows do not use it)"),
+            "changed with it, the sps-mean-centre and sps-plain rows do not use it); and, "
+            "since 2026-12-07, planes at least the side this person needs to tell the cells of "
+            "a plane's last zoom level apart, as the window gives it to a person of their "
+            "threshold (`spaces::body_uncertainty_min_side`: 8 thresholds, 40 mm for this "
+            "person, where the planes' smallest side was 24 mm before; then a mean gap of "
+            "6.41 mm at plane 10, 5.08 at plane 15 and a median of 5.06 at plane 15; the "
+            "sps-diagonal row changed with it)"),
     ("sps-diagonal", "the same, with one perceptual scale per component (`--diagonal-metric`) "
                      "instead of the full metric, the RMS vertex distance's Gram matrix over the "
                      "components, in the estimate and its planes (the built-in models' "

@@ -31,7 +31,7 @@ double look_alike_mm(double cell_px, double jnd_px) {
 }
 
 double choice_temperature_for_cells(double cell_px, double jnd_px) {
-  return std::max(kChoiceTemperatureMm, look_alike_mm(cell_px, jnd_px) / 3.0);
+  return std::max(kChoiceTemperatureMm, look_alike_mm(cell_px, jnd_px) / kLargestPerRmsDistance);
 }
 
 double choice_temperature_for_jnd_mm(double jnd_rms_mm) {

@@ -69,6 +69,9 @@ double look_alike_mm(double cell_px, double jnd_px = kDefaultJndPx);
 // mean gap went from 16.2 to 15.3 mm at plane 10 and from 14.9 to 13.1 at plane 15 with it;
 // at 400 px (3.6 mm) it is within the noise of 3 mm.
 constexpr double kChoiceTemperatureMm = 3.0;
+// The largest vertex distance of two bodies over their RMS vertex distance, about (the
+// conversion between the window's look-alike threshold and a threshold in RMS mm).
+constexpr double kLargestPerRmsDistance = 3.0;
 double choice_temperature_for_cells(double cell_px, double jnd_px = kDefaultJndPx);
 
 // The same for the body benchmark's person who cannot tell apart bodies within `jnd_rms_mm`

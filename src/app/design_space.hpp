@@ -114,6 +114,11 @@ class SpacePerception {
   // their smallest length in units of min_plane_length (sps::SearchOptions::
   // uncertainty_extent, uncertainty_min_lengths).
   virtual sps::UncertaintyPlaneSize uncertainty_size() const { return {}; }
+  // With uncertainty planes: the smallest side a person needs to tell a deep zoom level's
+  // cells apart when they are `cell_px` pixels high, in the perceptual scale's units
+  // (sps::SearchOptions::uncertainty_min_side); 0: not known yet, or no bound beyond
+  // min_plane_length.
+  virtual double uncertainty_min_side(int /*cell_px*/) const { return 0.0; }
   // Where designs typically lie in the search box and how far they spread (a body model's
   // population); empty where unknown.
   virtual sps::Population population() const = 0;

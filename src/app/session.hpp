@@ -147,6 +147,9 @@ class Session {
   // The smallest length of a plane's sides in the perceptual scale's units
   // (sps::SearchOptions::min_plane_length), from the next plane on (saved with the search).
   void set_min_plane_length(double length) { search_.set_min_plane_length(length); }
+  // The smallest side of uncertainty planes a person needs at the cells' size
+  // (sps::SearchOptions::uncertainty_min_side), from the next plane on (saved with the search).
+  void set_uncertainty_min_side(double length) { search_.set_uncertainty_min_side(length); }
   // How noisy the person's choices are for the estimate of the design in mind
   // (sps::SearchOptions::choice_temperature_mm), from the next plane on (saved with the search
   // when it has a population, the only case it is used in).

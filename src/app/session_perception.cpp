@@ -25,6 +25,9 @@ void set_cell_dependent(Session& session, const SpacePerception& perception, int
   if (const double t = perception.choice_temperature(cell_px); t > 0.0) {
     session.set_choice_temperature(t);
   }
+  if (const double side = perception.uncertainty_min_side(cell_px); side > 0.0) {
+    session.set_uncertainty_min_side(side);
+  }
 }
 
 }  // namespace

@@ -121,6 +121,7 @@ int run_body_simulation(const ArgParser& args) {
                               "no-perceptual-scale",
                               "diagonal-metric",
                               "min-plane-mm",
+                              "uncertainty-min-side",
                               "no-perceptual-ls",
                               "perceptual-btl",
                               "no-mean-centre",
@@ -212,6 +213,16 @@ int run_body_simulation(const ArgParser& args) {
   const bool target_model = !args.has("no-target-model");
   // The window's plane size and regions of choices for bodies (spaces::body_uncertainty_size).
   use_space_uncertainty_size(args, spaces::body_uncertainty_size(), options);
+  // The side a person needs to tell a deep zoom level's cells apart, as the window gives it to
+  // a person of this threshold (BodySpace::uncertainty_min_side): the pixel person's as the
+  // grids are typically framed, the mm person's (RMS) as the largest vertex distance it is.
+  options.uncertainty_min_side = args.get_double(
+      "uncertainty-min-side", spaces::body_uncertainty_min_side(
+                                  pixel_person ? pixel_mm * spaces::typical_frame_scale(framing)
+                                               : app::kLargestPerRmsDistance * jnd_mm));
+  if (!(options.uncertainty_min_side >= 0.0 && options.uncertainty_min_side < 1e4)) {
+    throw ArgError("--uncertainty-min-side must be in [0, 10000)");
+  }
   policy.compare_mm = args.get_double("compare-mm", policy.compare_mm);
   if (!(policy.compare_mm >= 0.0 && policy.compare_mm < 1e4)) {
     throw ArgError("--compare-mm must be in [0, 10000)");

@@ -89,6 +89,9 @@ the current best's coordinates within 1e-3 of 0 or 1). Defaults: 10 trials, 15 i
   --diagonal-metric   tell it one scale per direction only, not how directions overlap (the
                       RMS vertex distance's Gram matrix, which the window gives it)
   --min-plane-mm L    with the perceptual scale: smallest RMS length of u and v (default 12)
+  --uncertainty-min-side L  the uncertainty planes' smallest side, RMS mm (default: what the
+                      window gives a person of this threshold, 8 thresholds: 40 for the
+                      5 mm person, 30 for the pixel person at 230 px; 0: no such bound)
   --no-perceptual-ls  do not scale the length-scale priors by it
   --no-mean-centre    centre planes on the best observed point, not the posterior-mean maximum
   --no-target-model   centre planes on the posterior-mean maximum, not on the estimate of the

@@ -127,6 +127,13 @@ double BodySpace::min_plane_length(int cell_px) const {
              : 0.0;
 }
 
+double BodySpace::uncertainty_min_side(int cell_px) const {
+  // What 2 px show in a typical cell of the current framing, as min_plane_length above.
+  return cell_px > 0 ? body_uncertainty_min_side(app::look_alike_mm(cell_px, app::kDefaultJndPx) *
+                                                 framed_->typical_scale())
+                     : 0.0;
+}
+
 double BodySpace::choice_temperature(int cell_px) const {
   return cell_px > 0 ? app::choice_temperature_for_cells(cell_px) : 0.0;
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "app/cell_visibility.hpp"
 #include "app/design_space.hpp"
 #include "body/body_model.hpp"
 #include "spaces/body_framing.hpp"
@@ -31,6 +32,24 @@ inline sps::UncertaintyPlaneSize body_uncertainty_size() {
   sps::UncertaintyPlaneSize size;
   size.region_slack = kBodyChoiceRegionSlack;
   return size;
+}
+
+// The smallest side of the window's uncertainty planes for bodies (half-diagonals, as
+// sps::SearchOptions::uncertainty_min_side), for a person to whom cells closer than
+// `look_alike_mm` (largest vertex distance, as the cells are framed) look alike: 8 of their
+// thresholds in RMS mm (app::kLargestPerRmsDistance). A first grid's neighbours are a side
+// apart and the fourth zoom level's about a third of it (0.7^3), so a side sized for a finer
+// eye leaves a coarse eye's last clicks as guesses. Body benchmark (docs/benchmarks.md), median
+// gap at plane 15, the 5 mm person (a 40 mm side against twice min_plane_length, 24 mm) on
+// three sets of seeds (1000: 100 trials, 3000 and 5000: 200 each): 5.06 -> 4.53, 4.93 -> 4.77,
+// 5.12 -> 4.87 mm; 30 mm changed nothing, 36-42 mm gained about as much as 40, 48 mm nothing.
+// The pixel person at the default 230 px with close-ups (11 mm, a 30 mm side), mean gap at
+// plane 10 on seeds 1000 and 3000 (100 trials each): 7.94 -> 7.87 and 8.07 -> 8.05 mm; framed
+// whole (19 mm, 50 mm against 37): 10.06 -> 10.29 and 10.54 -> 9.80, at plane 15 8.61 -> 8.41
+// and 8.32 -> 8.05; at 400 px with close-ups the bound (17 mm) is below the 24 mm.
+constexpr double kBodyUncertaintySideThresholds = 8.0;
+inline double body_uncertainty_min_side(double look_alike_mm) {
+  return kBodyUncertaintySideThresholds * look_alike_mm / app::kLargestPerRmsDistance;
 }
 
 class BodySpace : public app::DesignSpace,
@@ -93,6 +112,7 @@ class BodySpace : public app::DesignSpace,
   // estimate of the body in mind is least certain (docs/benchmarks.md, the pixel person).
   sps::PlaneAxes plane_axes() const override { return sps::PlaneAxes::kTargetUncertainty; }
   sps::UncertaintyPlaneSize uncertainty_size() const override { return body_uncertainty_size(); }
+  double uncertainty_min_side(int cell_px) const override;
   Eigen::VectorXd perceptual_scale() const override;
   // The RMS vertex distance's Gram matrix (body::ShapeDistance::direction_gram_mm2): a model's
   // components need not be orthogonal in vertex space (the built-in ones are turned so that

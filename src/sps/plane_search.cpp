@@ -114,6 +114,14 @@ void require(bool ok, const std::string& what) {
 
 }  // namespace
 
+// The smallest side of an uncertainty plane: what a person sees at all (min_plane_length, in
+// the lengths the space asks for) or what they need to tell a deep zoom level's cells apart,
+// whichever is longer.
+double uncertainty_min_side_of(const SearchOptions& options) {
+  return std::max(options.uncertainty_min_lengths * options.min_plane_length,
+                  options.uncertainty_min_side);
+}
+
 UncertaintyPlaneSize uncertainty_size(const SearchOptions& options) {
   return {options.uncertainty_extent, options.uncertainty_min_lengths, options.choice_region_slack};
 }
@@ -151,6 +159,7 @@ void validate_options(const SearchOptions& o) {
   require(in(o.choice_temperature_mm, 1e-6, 1e4),
           "choice_temperature_mm must lie in [1e-6, 10000]");
   validate_uncertainty_size(uncertainty_size(o));
+  require(in(o.uncertainty_min_side, 0.0, 1e4), "uncertainty_min_side must lie in [0, 10000]");
   require(o.population.empty() ||
               (o.population.mean.size() == o.dims && o.population.sd.size() == o.dims),
           "the population mean and SD need one entry per dimension");
@@ -247,6 +256,13 @@ void PlaneSearch::set_min_plane_length(double length) {
     throw std::invalid_argument("the smallest plane length must lie in [0, 10000]");
   }
   options_.min_plane_length = length;
+}
+
+void PlaneSearch::set_uncertainty_min_side(double length) {
+  if (!(length >= 0.0 && length <= 1e4)) {
+    throw std::invalid_argument("the uncertainty planes' smallest side must lie in [0, 10000]");
+  }
+  options_.uncertainty_min_side = length;
 }
 
 void PlaneSearch::set_choice_temperature(double mm) {
@@ -473,8 +489,7 @@ std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) con
     return std::nullopt;
   }
   return uncertainty_plane(c, population_covariance(population), *metric_,
-                           options_.uncertainty_extent,
-                           options_.uncertainty_min_lengths * options_.min_plane_length);
+                           options_.uncertainty_extent, uncertainty_min_side_of(options_));
 }
 
 bool PlaneSearch::replace_with_population_plane() {
@@ -540,9 +555,8 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
     if (hold_) covariance = covariance_given_holds(covariance, hold_->normals(x_plus));
     // Where the box leaves no such plane (the estimate near a face, uncertain along barely
     // visible directions), the paper's plane, built inside the box.
-    if (auto plane =
-            uncertainty_plane(x_plus, covariance, *metric_, options_.uncertainty_extent,
-                              options_.uncertainty_min_lengths * options_.min_plane_length)) {
+    if (auto plane = uncertainty_plane(x_plus, covariance, *metric_, options_.uncertainty_extent,
+                                       uncertainty_min_side_of(options_))) {
       plane_ = *plane;
       uncertainty_plane_ = true;
       return;
@@ -669,6 +683,7 @@ std::string PlaneSearch::to_json() const {
     j["options"]["plane_axes"] = plane_axes_name(options_.plane_axes);
     j["options"]["uncertainty_extent"] = options_.uncertainty_extent;
     j["options"]["uncertainty_min_lengths"] = options_.uncertainty_min_lengths;
+    j["options"]["uncertainty_min_side"] = options_.uncertainty_min_side;
     j["options"]["choice_region_slack"] = options_.choice_region_slack;
   }
   j["rng"] = rng_state();
@@ -819,6 +834,11 @@ PlaneSearch PlaneSearch::from_json(const std::string& json_text) {
       };
       number("uncertainty_extent", options.uncertainty_extent);
       number("uncertainty_min_lengths", options.uncertainty_min_lengths);
+      // Files saved before it keep their planes' sides as they were.
+      if (o.contains("uncertainty_min_side")) {
+        options.uncertainty_min_side =
+            double_from_json(o.at("uncertainty_min_side"), "uncertainty_min_side", 0.0, 1e4);
+      }
       // Files saved before it get it for their planes still to come (it reads their choices).
       number("choice_region_slack", options.choice_region_slack);
     }

@@ -116,6 +116,14 @@ struct SearchOptions {
   PlaneAxes plane_axes = PlaneAxes::kExpectedImprovement;
   double uncertainty_extent = 5.0;
   double uncertainty_min_lengths = 2.0;
+  // And at least this long (the perceptual scale's units; 0: no such bound): the side a
+  // person needs to tell the cells of a plane's deepest zoom level apart, which the design
+  // space derives from what its cells show that person (spaces::body_uncertainty_min_side).
+  // min_plane_length alone is what a person sees at all; a person who sees only coarser
+  // differences resolves a plane no finer than a few of their thresholds, and planes sized
+  // for a finer eye leave their last clicks as guesses (body benchmark, the 5 mm person:
+  // median gap at plane 15 5.06 -> 4.53 mm, docs/benchmarks.md).
+  double uncertainty_min_side = 0.0;
 };
 
 // How large uncertainty planes are (SearchOptions::uncertainty_extent and
@@ -223,6 +231,9 @@ class PlaneSearch {
   // Sets options().min_plane_length (in the perceptual scale's units) for the next planes.
   // Throws std::invalid_argument outside [0, 10000].
   void set_min_plane_length(double length);
+  // Sets options().uncertainty_min_side (in the perceptual scale's units) for the next planes.
+  // Throws std::invalid_argument outside [0, 10000].
+  void set_uncertainty_min_side(double length);
   // Sets options().choice_temperature_mm (how noisy the person's choices are, in the
   // perceptual scale's units) for the next planes. Throws std::invalid_argument outside
   // [1e-6, 10000].

@@ -926,6 +926,7 @@ TEST_CASE("what a space's perception gives a session follows the cells' size, as
   CHECK(o.choice_region_slack == Approx(spaces::kBodyChoiceRegionSlack));  // the body's regions
   CHECK(o.min_plane_length == Approx(perception->min_plane_length(120)));
   CHECK(o.choice_temperature_mm == Approx(perception->choice_temperature(120)));
+  CHECK(o.uncertainty_min_side == Approx(perception->uncertainty_min_side(120)));
   CHECK(small.has_perceptual_distance());
   // Larger cells show finer differences: shorter planes, finer look-alike threshold (at 230
   // px and above a close-up's planes are at the optimizer's own floor).
@@ -937,6 +938,11 @@ TEST_CASE("what a space's perception gives a session follows the cells' size, as
   CHECK(resized.zoom_policy().look_alike_mm == Approx(large.zoom_policy().look_alike_mm));
   CHECK(resized.search().options().min_plane_length ==
         Approx(large.search().options().min_plane_length));
+  // A person who sees coarser differences in smaller cells needs longer planes to tell a deep
+  // zoom level's cells apart.
+  CHECK(o.uncertainty_min_side > large.search().options().uncertainty_min_side);
+  CHECK(resized.search().options().uncertainty_min_side ==
+        Approx(large.search().options().uncertainty_min_side));
   // A session saved on another model (its scale not this metric's diagonal) keeps its scale
   // alone; one saved on this model without the metric gains it.
   const Eigen::VectorXd scale = perception->perceptual_scale();
@@ -2062,10 +2068,12 @@ TEST_CASE("the Close-ups choice reaches the session's look-alike test and is rem
   CHECK(whole < close);
   // The planes' smallest side follows what the framing shows.
   const double whole_plane = c.session().search().options().min_plane_length;
+  const double whole_side = c.session().search().options().uncertainty_min_side;
   c.queue(intent::SetCloseUps{true});
   c.begin_frame(3.0);
   CHECK(c.session().perceptual_distance()(xs)(1, 2) == Approx(close));
   CHECK(c.session().search().options().min_plane_length <= whole_plane);
+  CHECK(c.session().search().options().uncertainty_min_side < whole_side);
   // ui.json keeps the choice.
   app::UiPrefs prefs;
   prefs.close_ups = false;
@@ -2093,6 +2101,12 @@ TEST_CASE("the look-alike threshold follows the cells' size on screen", "[galler
   CHECK(c.session().search().options().min_plane_length ==
         Approx(std::max(sps::SearchOptions{}.min_plane_length,
                         at_default * spaces::typical_frame_scale(spaces::BodyFraming::kCloseUps))));
+  // The uncertainty planes to come are at least 8 of those thresholds long, in RMS mm (a third
+  // of it, as a close-up shows it): about 30 mm, beyond twice the smallest length (24 mm).
+  const double side = c.session().search().options().uncertainty_min_side;
+  CHECK(side == Approx(spaces::kBodyUncertaintySideThresholds * at_default *
+                       spaces::typical_frame_scale(spaces::BodyFraming::kCloseUps) / 3.0));
+  CHECK(side > 2.0 * c.session().search().options().min_plane_length);
   // And the estimate of the body in mind takes the choices as about as noisy as a third of it.
   CHECK(c.session().search().options().choice_temperature_mm ==
         Approx(app::choice_temperature_for_cells(app::kDefaultCellPx)));

@@ -3,6 +3,7 @@
 // plane centre (saved with the search), its uncertainty and the planes along it.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -562,6 +563,52 @@ TEST_CASE("an uncertainty plane the person cannot tell apart gives way to the pa
   REQUIRE(search.undo());
   CHECK_FALSE(search.replace_uncertainty_plane());
   CHECK_FALSE(paper.replace_uncertainty_plane());
+}
+
+TEST_CASE("uncertainty planes are at least the side the person needs, and keep it saved",
+          "[target][search]") {
+  sps::SearchOptions o = uncertainty_options(17);
+  // Every direction visible enough that the sides below fit well inside the box.
+  o.perceptual_scale = Eigen::Vector3d(400.0, 300.0, 250.0);
+  // Half-diagonals of a fraction of the estimate's SD: the smallest side decides the planes.
+  o.uncertainty_extent = 0.3;
+  const double floor_side = o.uncertainty_min_lengths * o.min_plane_length;  // 24
+  o.uncertainty_min_side = 2.0 * floor_side;
+  sps::PlaneSearch search(o);
+  const sps::TargetModel m = model_for(o.perceptual_scale);
+  search.set_population(m.population);
+  const auto seen = [&](const Eigen::VectorXd& a) { return a.cwiseProduct(o.perceptual_scale); };
+  const Eigen::Vector3d goal(0.45, 0.55, 0.5);
+  for (int it = 0; it < 8; ++it) {
+    search.submit(nearest_on_plane(search.current_plane(), goal, o.perceptual_scale));
+    const sps::Plane& plane = search.current_plane();
+    CAPTURE(it, seen(plane.u).norm(), seen(plane.v).norm());
+    CHECK(seen(plane.u).norm() >= 0.999 * o.uncertainty_min_side);
+    CHECK(seen(plane.v).norm() >= 0.999 * o.uncertainty_min_side);
+  }
+  // Without the bound the same clicks give planes shorter than it: the bound is what held them.
+  o.uncertainty_min_side = 0.0;
+  sps::PlaneSearch plain(o);
+  plain.set_population(m.population);
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < 8; ++it) {
+    plain.submit(nearest_on_plane(plain.current_plane(), goal, o.perceptual_scale));
+    shortest = std::min(shortest, seen(plain.current_plane().v).norm());
+  }
+  CHECK(shortest < 0.9 * 2.0 * floor_side);
+  // Refused outside [0, 10000], and nothing changes.
+  CHECK_THROWS_AS(search.set_uncertainty_min_side(-1.0), std::invalid_argument);
+  CHECK_THROWS_AS(search.set_uncertainty_min_side(std::nan("")), std::invalid_argument);
+  CHECK(search.options().uncertainty_min_side == Approx(2.0 * floor_side));
+  search.set_uncertainty_min_side(30.0);
+  // Saved with the search; a file from before it has no such bound.
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK(restored.options().uncertainty_min_side == Approx(30.0));
+  auto j = nlohmann::json::parse(search.to_json());
+  j["options"]["uncertainty_min_side"] = -3.0;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("uncertainty_min_side"));
+  j["options"].erase("uncertainty_min_side");
+  CHECK(sps::PlaneSearch::from_json(j.dump()).options().uncertainty_min_side == 0.0);
 }
 
 TEST_CASE("a plane still not told apart gives way to the population's axes through its centre",
