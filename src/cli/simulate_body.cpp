@@ -183,9 +183,9 @@ int run_body_simulation(const ArgParser& args) {
   // A plane shorter than what the pixel person sees would show look-alike cells however the
   // first grid is widened: its sides are at least the threshold long, in the framing the
   // grids typically get (BodySpace::min_plane_length, the same rule).
+  const double framed_pixel_mm = pixel_mm * spaces::typical_frame_scale(framing);
   if (pixel_person) {
-    options.min_plane_length =
-        std::max(options.min_plane_length, pixel_mm * spaces::typical_frame_scale(framing));
+    options.min_plane_length = std::max(options.min_plane_length, framed_pixel_mm);
   }
   options.min_plane_length = args.get_double("min-plane-mm", options.min_plane_length);
   if (!(options.min_plane_length >= 0.0 && options.min_plane_length < 1e4)) {
@@ -216,10 +216,10 @@ int run_body_simulation(const ArgParser& args) {
   // The side a person needs to tell a deep zoom level's cells apart, as the window gives it to
   // a person of this threshold (BodySpace::uncertainty_min_side): the pixel person's as the
   // grids are typically framed, the mm person's (RMS) as the largest vertex distance it is.
-  options.uncertainty_min_side = args.get_double(
-      "uncertainty-min-side", spaces::body_uncertainty_min_side(
-                                  pixel_person ? pixel_mm * spaces::typical_frame_scale(framing)
-                                               : app::kLargestPerRmsDistance * jnd_mm));
+  options.uncertainty_min_side =
+      args.get_double("uncertainty-min-side",
+                      spaces::body_uncertainty_min_side(
+                          pixel_person ? framed_pixel_mm : app::kLargestPerRmsDistance * jnd_mm));
   if (!(options.uncertainty_min_side >= 0.0 && options.uncertainty_min_side < 1e4)) {
     throw ArgError("--uncertainty-min-side must be in [0, 10000)");
   }

@@ -117,21 +117,21 @@ app::ZoomPolicy BodySpace::zoom_policy(int cell_px) const {
   return cell_px > 0 ? app::zoom_policy_for_cells(cell_px) : app::ZoomPolicy{};
 }
 
+double BodySpace::framed_look_alike_mm(int cell_px) const {
+  return app::look_alike_mm(cell_px, app::kDefaultJndPx) * framed_->typical_scale();
+}
+
 double BodySpace::min_plane_length(int cell_px) const {
   // A plane shorter than what a pixel-limited person sees shows look-alike cells however its
   // first grid is widened (the benchmark's pixel person has the same rule): at 230 px, 19 mm
   // on the whole body, 11 mm in a typical close-up.
   return cell_px > 0
-             ? std::max(sps::SearchOptions{}.min_plane_length,
-                        app::look_alike_mm(cell_px, app::kDefaultJndPx) * framed_->typical_scale())
+             ? std::max(sps::SearchOptions{}.min_plane_length, framed_look_alike_mm(cell_px))
              : 0.0;
 }
 
 double BodySpace::uncertainty_min_side(int cell_px) const {
-  // What 2 px show in a typical cell of the current framing, as min_plane_length above.
-  return cell_px > 0 ? body_uncertainty_min_side(app::look_alike_mm(cell_px, app::kDefaultJndPx) *
-                                                 framed_->typical_scale())
-                     : 0.0;
+  return cell_px > 0 ? body_uncertainty_min_side(framed_look_alike_mm(cell_px)) : 0.0;
 }
 
 double BodySpace::choice_temperature(int cell_px) const {

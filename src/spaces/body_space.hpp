@@ -123,6 +123,10 @@ class BodySpace : public app::DesignSpace,
   const body::Model& model() const { return model_; }
 
  private:
+  // The largest vertex distance (mm) that 2 px show in a typical cell of `cell_px` pixels in
+  // the current framing (cell_px > 0): what min_plane_length and uncertainty_min_side follow.
+  double framed_look_alike_mm(int cell_px) const;
+
   body::Model model_;
   std::string source_;
   // The same model for projectors and solves that may outlive this space (a session in the

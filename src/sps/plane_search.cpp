@@ -112,8 +112,6 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
-}  // namespace
-
 // The smallest side of an uncertainty plane: what a person sees at all (min_plane_length, in
 // the lengths the space asks for) or what they need to tell a deep zoom level's cells apart,
 // whichever is longer.
@@ -121,6 +119,8 @@ double uncertainty_min_side_of(const SearchOptions& options) {
   return std::max(options.uncertainty_min_lengths * options.min_plane_length,
                   options.uncertainty_min_side);
 }
+
+}  // namespace
 
 UncertaintyPlaneSize uncertainty_size(const SearchOptions& options) {
   return {options.uncertainty_extent, options.uncertainty_min_lengths, options.choice_region_slack};
