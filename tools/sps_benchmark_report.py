@@ -227,7 +227,14 @@ BODY_VARIANTS = [
             "threshold (`spaces::body_uncertainty_min_side`: 8 thresholds, 40 mm for this "
             "person, where the planes' smallest side was 24 mm before; then a mean gap of "
             "6.41 mm at plane 10, 5.08 at plane 15 and a median of 5.06 at plane 15; the "
-            "sps-diagonal row changed with it)"),
+            "sps-diagonal row changed with it); and, since the second run of 2026-12-07, a "
+            "plane moved to keep its cells apart inside the box moved by whole cells, so that "
+            "the estimate stays a cell of its first grid and the current best, which is what "
+            "the window saves (`sps::Plane::best_s`, `best_t`; before, the current best was "
+            "the moved plane's centre: a median saved body of 6.45 mm at plane 10 and 4.94 at "
+            "plane 15, a median gap of 6.12 and 4.53; the sps-diagonal row changed with it, "
+            "the sps-mean-centre row, whose paper's planes can put x+ at a corner, only in "
+            "its saved body, and the sps-plain row not at all)"),
     ("sps-diagonal", "the same, with one perceptual scale per component (`--diagonal-metric`) "
                      "instead of the full metric, the RMS vertex distance's Gram matrix over the "
                      "components, in the estimate and its planes (the built-in models' "

@@ -19,6 +19,10 @@ struct CellView {
   std::shared_ptr<const PreparedCell> prepared;
   render::CellFramebuffer fbo;
   bool clamped = false;
+  // The cell shows the current best (what Save writes now): labelled, so that a person sees
+  // which cell keeps what they have, also where a plane near the box's faces shows it at an
+  // edge or a corner.
+  bool current = false;
   bool dirty = true;
   int drawn_camera = -1;
   int region_w = 0;

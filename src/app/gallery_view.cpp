@@ -137,7 +137,12 @@ void GalleryView::update_cells(GalleryController& c, float width, float height, 
   const Session& s = c.session();
   const auto& sliders = sliders_.point();
   const bool sliding = sliders && sliders->size() == space.dimensions();
-  best_.set_point(space, sliding ? *sliders : s.current_best(), true);
+  const Eigen::VectorXd current = s.current_best();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    cells_[i].current =
+        !sliding && points[i].x.size() == current.size() && (points[i].x - current).norm() < 1e-9;
+  }
+  best_.set_point(space, sliding ? *sliders : current, true);
   start_.set_point(space, s.start_point(), true);
   if (c.inspected() >= 0) {
     inspect_.set_point(space, s.history()[static_cast<std::size_t>(c.inspected())].chosen, true);

@@ -91,6 +91,13 @@ bool GridPanel::draw(PanelContext& ctx, const GalleryLayout& layout,
       dl->AddRectFilled(ImVec2(p0.x + 4, p0.y + 4), ImVec2(p0.x + 12 + ls.x, p0.y + 6 + ls.y),
                         IM_COL32(20, 22, 28, 150), 3.0f);
       dl->AddText(ImVec2(p0.x + 8, p0.y + 5), IM_COL32(240, 240, 245, 255), label.c_str());
+      if (view != nullptr && view->current && shown >= 90.0f) {
+        const char* current = "current best";
+        const ImVec2 cs = ImGui::CalcTextSize(current);
+        dl->AddRectFilled(ImVec2(p1.x - 12 - cs.x, p0.y + 4), ImVec2(p1.x - 4, p0.y + 6 + cs.y),
+                          IM_COL32(20, 22, 28, 150), 3.0f);
+        dl->AddText(ImVec2(p1.x - 8 - cs.x, p0.y + 5), IM_COL32(120, 200, 255, 255), current);
+      }
       if (view != nullptr && view->clamped && shown >= 90.0f) {
         const char* edge = "edge of the range";
         const ImVec2 es = ImGui::CalcTextSize(edge);

@@ -335,12 +335,20 @@ bool has_look_alike_pair(const std::vector<sps::GridPoint>& cells, const Pairwis
 std::optional<sps::GridView> distinct_first_view(
     const sps::GridView& base,
     const std::function<std::vector<sps::GridPoint>(const sps::GridView&)>& cells_of,
-    const PairwiseDistance& distance, double threshold) {
+    const PairwiseDistance& distance, double threshold, const sps::Plane& plane) {
   if (!has_look_alike_pair(cells_of(base), distance, threshold)) return base;
+  // Widened or narrowed about the plane's current best (a cell of the base grid), which
+  // stays a cell.
+  const auto scaled = [&](double factor) {
+    sps::GridView view = base;
+    view.spacing *= factor;
+    view.s = plane.best_s + (base.s - plane.best_s) * factor;
+    view.t = plane.best_t + (base.t - plane.best_t) * factor;
+    return view;
+  };
   const auto widen = [&](bool allow_clamped) -> std::optional<sps::GridView> {
     for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
-      sps::GridView wider = base;
-      wider.spacing *= factor;
+      const sps::GridView wider = scaled(factor);
       const std::vector<sps::GridPoint> cells = cells_of(wider);
       bool clamped = false;
       for (const auto& p : cells) clamped = clamped || p.clamped;
@@ -352,8 +360,7 @@ std::optional<sps::GridView> distinct_first_view(
   if (auto wider = widen(false)) return wider;
   if (auto wider = widen(true)) return wider;
   for (double factor : {0.8, 0.64, 0.5, 0.4}) {
-    sps::GridView narrower = base;
-    narrower.spacing *= factor;
+    const sps::GridView narrower = scaled(factor);
     if (!has_look_alike_pair(cells_of(narrower), distance, threshold)) return narrower;
   }
   return std::nullopt;
@@ -421,7 +428,8 @@ PlaneVetter Session::plane_vetter() const {
     const auto distinct = [&] {
       const sps::Plane& plane = search.current_plane();
       const auto cells_of = [&](const sps::GridView& view) { return plane_cells(plane, n, view); };
-      return distinct_first_view(first_view(false, n), cells_of, distance, threshold).has_value();
+      return distinct_first_view(first_view(false, n), cells_of, distance, threshold, plane)
+          .has_value();
     };
     if (distinct()) return;
     // The paper's plane for the same choice; where that cannot be told apart either (or the
@@ -479,11 +487,13 @@ sps::GridView Session::next_view(const sps::GridView& view, const sps::GridCell&
     sps::GridView next;
     next.spacing = view.spacing * factor;
     const double half = 0.5 * next.spacing * static_cast<double>(span);
-    // Within the first level's extent (the plane's square, or more when it was widened).
-    const double extent = 0.5 * views_.front().spacing * static_cast<double>(span);
-    const double lo = -extent + half, hi = extent - half;
-    next.s = lo <= hi ? std::clamp(s, lo, hi) : s;
-    next.t = line ? 0.0 : (lo <= hi ? std::clamp(t, lo, hi) : t);
+    // Within the first level's extent (the plane's square, or more when it was widened; off
+    // centre when it was widened or narrowed about a current best off the centre).
+    const sps::GridView& first = views_.front();
+    const double extent = 0.5 * first.spacing * static_cast<double>(span);
+    const double room = extent - half;
+    next.s = room >= 0.0 ? std::clamp(s, first.s - room, first.s + room) : s;
+    next.t = line ? 0.0 : (room >= 0.0 ? std::clamp(t, first.t - room, first.t + room) : t);
     return next;
   };
   distinct = true;
@@ -517,11 +527,19 @@ void Session::update_views() {
         sps::hold_plane(*projector_, search_.current_plane()));
   }
   prepared_.reset();
+  held_best_.resize(0);
+  if (held_) {
+    const sps::Plane& plane = held_->plane;
+    held_best_ =
+        plane.best_is_centre()
+            ? plane.c
+            : projector_->project_near(plane.best().cwiseMax(0.0).cwiseMin(1.0), held_->normals);
+  }
   views_.assign(1, first_view(line, settings_.grid_size));
   if (distance_ && !line) {
     const auto cells_of = [this](const sps::GridView& view) { return decision_cells(view); };
-    if (auto shown =
-            distinct_first_view(views_.front(), cells_of, distance_, policy_.look_alike_mm)) {
+    if (auto shown = distinct_first_view(views_.front(), cells_of, distance_, policy_.look_alike_mm,
+                                         search_.current_plane())) {
       views_.front() = *shown;
     }
   }
@@ -697,7 +715,7 @@ Eigen::VectorXd Session::current_best() const {
     const auto points = cells_at(views_[path_.size() - 1]);
     return points[static_cast<size_t>(clicked.row * settings_.grid_size + clicked.col)].x;
   }
-  return held_ ? held_->plane.c : search_.x_plus();
+  return held_ ? held_best_ : search_.x_plus();
 }
 
 std::string Session::to_json() const {

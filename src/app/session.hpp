@@ -295,6 +295,9 @@ class Session {
   // cells of the views asked for so far on this plane.
   std::shared_ptr<const ConstraintProjector> projector_;
   std::shared_ptr<const sps::HeldPlane> held_;
+  // With holds, the current best on the held surface (the held plane's centre, or its point
+  // where the plane's current best lies off the centre, moved onto the holds); set with held_.
+  Eigen::VectorXd held_best_;
   mutable std::vector<std::pair<sps::GridView, std::vector<sps::GridPoint>>> held_cells_;
   std::vector<HeldValue> saved_holds_;     // what to_json() writes as "holds"
   std::optional<PreparedPlane> prepared_;  // for the next update_views(), if it matches

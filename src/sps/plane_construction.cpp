@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "sps/bounded_maximizer.hpp"
 #include "sps/expected_improvement.hpp"
@@ -417,35 +418,74 @@ std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::Ma
   // The plane may reach beyond the box (its cells are clamped when shown): centred on the
   // estimate, with the first grid's extremes far apart, it finds the design in mind sooner
   // than one fitted into the box (body benchmark). But near a face of the box clamped cells
-  // can coincide: then each axis is slid along itself until c +- it lies inside the box where
-  // the box is wide enough (c stays on the plane, off its centre), or to the middle of the
-  // box's chord where it is narrower; and the plane is shrunk until cells are at least half
-  // of min_length apart (none when no shrinking gets them there).
+  // can coincide. Then the plane is moved by whole cells, so that the estimate becomes
+  // another cell of its first grid (an edge or a corner: the person can still keep it, and it
+  // stays the current best), and shrunk about the estimate: the largest plane whose clamped
+  // cells are at least half of min_length apart, centred on the estimate where that is
+  // possible, its centre always inside the box. Moving it so that the estimate fell between
+  // cells took the estimate out of the grid: a photo edit chosen near +90 on a slider showed
+  // +14 as the current best after the next plane.
   const double apart = 0.5 * min_length;
-  if (closest_clamped_cells(p, metric, 1.0) < apart) {
-    for (Eigen::VectorXd* a : {&p.u, &p.v}) {
-      if (a->norm() < 1e-12) continue;
-      const double ahead = room_along(p.c, *a), behind = room_along(p.c, -*a);
-      p.c += (ahead + behind < 2.0 ? 0.5 * (ahead - behind)
-                                   : std::clamp(0.0, 1.0 - behind, ahead - 1.0)) *
-             *a;
+  // Where none keeps them that far apart, the placement and size whose closest cells lie
+  // furthest apart.
+  struct Placement {
+    int s = 0, t = 0;
+    double factor = 1.0;
+    double closest = -1.0;
+  };
+  constexpr std::array<std::array<int, 2>, 9> kNodes = {
+      {{0, 0}, {-1, -1}, {-1, 0}, {-1, 1}, {0, -1}, {0, 1}, {1, -1}, {1, 0}, {1, 1}}};
+  const Plane centred = p;
+  Placement chosen, furthest;
+  for (double factor = 1.0; factor > 0.05 && chosen.closest < apart; factor *= 0.85) {
+    for (const auto& [s, t] : kNodes) {
+      Plane moved = centred;
+      // The estimate at the grid's (s, t): c + a u + b v with a = (s + t) / 2, b = (s - t) / 2.
+      moved.c = centred.c - factor * (0.5 * (s + t) * p.u + 0.5 * (s - t) * p.v);
+      // The centre stays in the box (a plane is centred on a design).
+      if (moved.c.minCoeff() < 0.0 || moved.c.maxCoeff() > 1.0) continue;
+      const double closest = closest_clamped_cells(moved, metric, factor);
+      if (closest > furthest.closest + 1e-9) furthest = {s, t, factor, closest};
+      if (closest >= apart) {
+        chosen = {s, t, factor, closest};
+        break;
+      }
     }
   }
-  double best_factor = 1.0, best_apart = closest_clamped_cells(p, metric, 1.0);
-  for (double factor = 0.85; best_apart < apart && factor > 0.05; factor *= 0.85) {
-    const double closest = closest_clamped_cells(p, metric, factor);
-    if (closest > best_apart) {
-      best_apart = closest;
-      best_factor = factor;
-    }
-  }
+  if (chosen.closest < apart) chosen = furthest;
   // A plane whose cells come closer than its smallest side (a third of min_length: what a
   // person can tell apart) is not shown; one between that and `apart` is (the session's own
   // look-alike test widens or narrows its first grid where needed).
-  if (best_apart < min_length / 3.0) return std::nullopt;
-  p.u *= best_factor;
-  p.v *= best_factor;
+  if (chosen.closest < min_length / 3.0) return std::nullopt;
+  p.u *= chosen.factor;
+  p.v *= chosen.factor;
+  p.c = c - 0.5 * (chosen.s + chosen.t) * p.u - 0.5 * (chosen.s - chosen.t) * p.v;
+  p.best_s = chosen.s;
+  p.best_t = chosen.t;
   return p;
+}
+
+std::optional<std::pair<double, double>> plane_coordinates(const Plane& plane,
+                                                           const Eigen::VectorXd& x,
+                                                           double tolerance) {
+  const Eigen::Index d = plane.c.size();
+  if (x.size() != d || plane.u.size() != d || !x.allFinite()) return std::nullopt;
+  const bool line = plane.is_line();
+  Eigen::MatrixXd axes(d, line ? 1 : 2);
+  axes.col(0) = plane.u;
+  if (!line) axes.col(1) = plane.v;
+  const Eigen::VectorXd ab = axes.colPivHouseholderQr().solve(x - plane.c);
+  if (!ab.allFinite() || (axes * ab - (x - plane.c)).norm() > tolerance) return std::nullopt;
+  double a = ab(0);
+  const double b = line ? 0.0 : ab(1);
+  if (a < 0.0) {
+    if (!(plane.u_neg_scale > 0.0)) return std::nullopt;
+    a /= plane.u_neg_scale;
+  }
+  const double s = a + b, t = a - b;
+  constexpr double kSlack = 1e-9;
+  if (std::abs(s) > 1.0 + kSlack || std::abs(t) > 1.0 + kSlack) return std::nullopt;
+  return std::make_pair(std::clamp(s, -1.0, 1.0), std::clamp(t, -1.0, 1.0));
 }
 
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei) {

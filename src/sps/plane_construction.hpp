@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -97,6 +98,12 @@ Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
 std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
                                        const PerceptualMetric& metric, double extent,
                                        double min_length);
+
+// The grid coordinates (s, t) of x on the plane (Plane::point(s, t) == x within `tolerance`
+// in box units, inside [-1, 1]^2), or nullopt where x is not on the plane's square.
+std::optional<std::pair<double, double>> plane_coordinates(const Plane& plane,
+                                                           const Eigen::VectorXd& x,
+                                                           double tolerance = 1e-9);
 
 // Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei);

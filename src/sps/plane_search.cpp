@@ -74,10 +74,8 @@ constexpr long long kMaxStoredPoints = 100000;
 constexpr long long kMaxStoredPreferences = 100000;
 
 json plane_to_json(const Plane& p) {
-  return {{"c", vec_to_json(p.c)},
-          {"u", vec_to_json(p.u)},
-          {"v", vec_to_json(p.v)},
-          {"u_neg_scale", p.u_neg_scale}};
+  return {{"c", vec_to_json(p.c)},        {"u", vec_to_json(p.u)}, {"v", vec_to_json(p.v)},
+          {"u_neg_scale", p.u_neg_scale}, {"best_s", p.best_s},    {"best_t", p.best_t}};
 }
 
 Plane plane_from_json(const json& j, int dims) {
@@ -86,6 +84,9 @@ Plane plane_from_json(const json& j, int dims) {
   p.u = vec_from_json(j.at("u"), "plane.u", dims, -kMaxPlaneExtent, kMaxPlaneExtent);
   p.v = vec_from_json(j.at("v"), "plane.v", dims, -kMaxPlaneExtent, kMaxPlaneExtent);
   p.u_neg_scale = double_from_json(j.at("u_neg_scale"), "plane.u_neg_scale", 0.0, 1.0);
+  // Files saved before the current best could lie off the centre: the centre.
+  if (j.contains("best_s")) p.best_s = double_from_json(j.at("best_s"), "plane.best_s", -1.0, 1.0);
+  if (j.contains("best_t")) p.best_t = double_from_json(j.at("best_t"), "plane.best_t", -1.0, 1.0);
   return p;
 }
 
@@ -494,7 +495,7 @@ std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) con
 
 bool PlaneSearch::replace_with_population_plane() {
   if (plane_.is_line()) return false;
-  auto plane = population_plane(plane_.c);
+  auto plane = population_plane(plane_.best());
   if (!plane) return false;
   plane_ = *plane;
   uncertainty_plane_ = false;
@@ -502,6 +503,19 @@ bool PlaneSearch::replace_with_population_plane() {
 }
 
 void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly) {
+  const Eigen::VectorXd best = build_next_plane(last_choice, set_directly);
+  // The current best is the point the plane was built around, wherever the construction put
+  // the plane's centre (moved into the box, or forward so that x+ is a corner); where it is
+  // not on the plane's square (it should be), the centre as before.
+  if ((plane_.best() - best).norm() > 1e-9) {
+    const auto at = plane_coordinates(plane_, best);
+    plane_.best_s = at ? at->first : 0.0;
+    plane_.best_t = at ? at->second : 0.0;
+  }
+}
+
+Eigen::VectorXd PlaneSearch::build_next_plane(const Eigen::VectorXd& last_choice,
+                                              bool set_directly) {
   last_choice_ = last_choice;
   last_set_directly_ = set_directly;
   uncertainty_plane_ = false;
@@ -544,7 +558,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   }
   if (options_.method == Method::kSpsRandom) {
     plane_ = random_plane(x_plus, rng_);
-    return;
+    return x_plus;
   }
   const bool uncertain_axes = options_.method == Method::kSps && target &&
                               options_.plane_axes != PlaneAxes::kExpectedImprovement;
@@ -559,7 +573,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
                                        uncertainty_min_side_of(options_))) {
       plane_ = *plane;
       uncertainty_plane_ = true;
-      return;
+      return x_plus;
     }
   }
   const double best_mean = model_->mean(x_plus);
@@ -574,7 +588,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
       maximize_expected_improvement(*model_, best_mean, x_plus, rng_, ei, space);
   if (options_.method == Method::kSls) {
     plane_ = sls_line(x_plus, x_ei);
-    return;
+    return x_plus;
   }
   PlaneSearchSettings ps;
   ps.restarts = options_.plane_restarts;
@@ -583,6 +597,7 @@ void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool se
   ps.min_plane_length = options_.min_plane_length;
   ps.keep_centre = set_directly;
   plane_ = sps_plane(*model_, x_plus, x_ei, best_mean, rng_, ps, space);
+  return x_plus;
 }
 
 double PlaneSearch::posterior_mean(const Eigen::VectorXd& x) const {

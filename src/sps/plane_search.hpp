@@ -197,8 +197,9 @@ class PlaneSearch {
   // midpoints.
   std::vector<std::pair<double, double>> representative_coordinates() const;
 
-  // Current best point (x+): the centre of the current plane.
-  Eigen::VectorXd x_plus() const { return plane_.c; }
+  // Current best point (x+): the point the current plane was built around (its centre,
+  // unless the plane was moved to fit the box: Plane::best).
+  Eigen::VectorXd x_plus() const { return plane_.best(); }
 
   // Posterior of the goodness model at x (0 mean / prior variance before any data).
   double posterior_mean(const Eigen::VectorXd& x) const;
@@ -284,6 +285,8 @@ class PlaneSearch {
   };
 
   void propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly);
+  // propose_next_plane's construction; returns the current best it built the plane around.
+  Eigen::VectorXd build_next_plane(const Eigen::VectorXd& last_choice, bool set_directly);
   // The first plane for the current options and hold (visible_first_plane or
   // held_first_plane), or false when there is no perceptual scale.
   bool visible_start(Plane& plane) const;

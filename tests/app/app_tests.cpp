@@ -20,6 +20,7 @@
 #include "app/worker.hpp"
 #include "bench/window_timing.hpp"
 #include "session_fixtures.hpp"
+#include "sps/target_estimate.hpp"
 
 namespace fs = std::filesystem;
 
@@ -526,6 +527,69 @@ TEST_CASE("with a perceptual distance no zoomed grid shows look-alikes", "[app][
     if (mm_per_unit < 100.0) CHECK(ended_early > 0);
     if (mm_per_unit > 300.0) CHECK(ended_early == 0);
   }
+}
+
+TEST_CASE("a person who wants an edit near the box's faces keeps it as the current best",
+          "[app][jnd]") {
+  // The photo defect: a warm, bright edit chosen near +90 on its sliders came back as +14
+  // after the next plane, because the plane had been moved to fit the box and its centre,
+  // not the estimate, was shown as the current best (and the estimate was in no cell).
+  app::Session session(small_settings());
+  app::ZoomPolicy policy;
+  policy.distinct_mm = 10.0;
+  policy.look_alike_mm = 10.0;
+  const double mm_per_unit = 150.0;
+  session.set_perceptual_distance(euclidean_mm(mm_per_unit), policy);
+  session.set_perceptual_scale(Eigen::VectorXd::Constant(4, mm_per_unit));
+  sps::Population population;
+  population.mean = Eigen::VectorXd::Constant(4, 0.5);
+  population.sd = Eigen::Vector4d(0.35, 0.3, 0.25, 0.2);
+  session.set_population(population);
+  session.set_plane_axes(sps::PlaneAxes::kTargetUncertainty);
+  session.set_min_plane_length(20.0);
+  // The choices' regions bound the estimate (as the body's window does): without them a
+  // person who keeps the centre leaves the planes where they are.
+  sps::UncertaintyPlaneSize size;
+  size.region_slack = 8.0;
+  session.set_uncertainty_size(size);
+  const Eigen::Vector4d wanted(0.97, 0.96, 0.95, 0.5);
+  int moved = 0;
+  for (int plane = 0; plane < 8; ++plane) {
+    while (!session.submission_pending()) {
+      const auto cells = session.cells();
+      int nearest = 0;
+      for (int k = 1; k < static_cast<int>(cells.size()); ++k) {
+        if ((cells[static_cast<size_t>(k)].x - wanted).norm() <
+            (cells[static_cast<size_t>(nearest)].x - wanted).norm()) {
+          nearest = k;
+        }
+      }
+      session.click({nearest % 3, nearest / 3});
+    }
+    const auto sub = session.submission();
+    sps::PlaneSearch next = session.search();
+    next.submit(sub.chosen, sub.extra_comparisons);
+    session.finish_plane(std::move(next), std::nullopt);
+    // The current best is the estimate of the design in mind the plane was built around
+    // (the MAP of the choices, where its optimizer stays), and a cell of its first grid: the
+    // person can keep it.
+    const Eigen::VectorXd best = session.current_best();
+    CHECK((best - session.search().x_plus()).norm() < 1e-12);
+    const sps::SearchOptions& o = session.search().options();
+    const sps::TargetModel model{sps::PerceptualMetric(o.perceptual_scale, o.perceptual_metric),
+                                 o.population, o.choice_temperature_mm, o.choice_region_slack};
+    CHECK((sps::estimate_target(session.search().data(), model, best) - best).norm() < 1e-4);
+    double nearest_cell = 1e9;
+    for (const auto& cell : session.cells()) {
+      nearest_cell = std::min(nearest_cell, (cell.x - best).norm());
+    }
+    CHECK(nearest_cell < 1e-9);
+    if (!session.search().current_plane().best_is_centre()) ++moved;
+  }
+  // The estimate reached the faces, so planes had to be moved, and it kept what was chosen.
+  CHECK(moved > 0);
+  CHECK(session.current_best()(0) > 0.8);
+  CHECK(session.current_best()(1) > 0.8);
 }
 
 TEST_CASE("with a perceptual distance the zoom is gentler than the paper's halving", "[app][jnd]") {

@@ -322,11 +322,48 @@ TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells a
   // Where the whole box shows less than that (1 mm per unit), there is no such plane.
   CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(Eigen::Vector3d::Ones()), 3.0,
                                      min_length));
-  // The estimate is still on the plane: c + a u + b v for some a, b.
-  Eigen::Matrix<double, 3, 2> axes;
-  axes << p.u, p.v;
-  const Eigen::Vector2d ab = axes.colPivHouseholderQr().solve(c - p.c);
-  CHECK((p.c + axes * ab - c).norm() < 1e-9);
+  // The plane was moved (its centre is not the estimate), by whole cells: the estimate is a
+  // cell of the first grid, an edge or a corner, and stays the plane's current best.
+  CHECK((p.c - c).norm() > 0.05);
+  CHECK_FALSE(p.best_is_centre());
+  CHECK(std::abs(p.best_s - std::round(p.best_s)) < 1e-12);
+  CHECK(std::abs(p.best_t - std::round(p.best_t)) < 1e-12);
+  CHECK((p.best() - c).norm() < 1e-9);
+  CHECK((p.c.array() >= 0.0).all());
+  CHECK((p.c.array() <= 1.0).all());
+  const auto at = sps::plane_coordinates(p, c);
+  REQUIRE(at);
+  CHECK(at->first == Approx(p.best_s).margin(1e-9));
+  CHECK(at->second == Approx(p.best_t).margin(1e-9));
+  // Away from the faces the plane stays centred on the estimate.
+  const auto inside = sps::uncertainty_plane(Eigen::Vector3d::Constant(0.5), cov * 0.1,
+                                             sps::PerceptualMetric(scale), 3.0, min_length);
+  REQUIRE(inside);
+  CHECK(inside->best_is_centre());
+  CHECK((inside->c - Eigen::Vector3d::Constant(0.5)).norm() < 1e-12);
+}
+
+TEST_CASE("a point's grid coordinates on a plane", "[plane]") {
+  sps::Plane p;
+  p.c = Eigen::Vector3d(0.5, 0.5, 0.5);
+  p.u = Eigen::Vector3d(0.2, 0.0, 0.0);
+  p.v = Eigen::Vector3d(0.0, 0.1, 0.0);
+  for (const auto& [s, t] : std::vector<std::pair<double, double>>{
+           {0.0, 0.0}, {-1.0, -1.0}, {1.0, 0.0}, {0.25, -0.5}, {-1.0, 1.0}}) {
+    const auto at = sps::plane_coordinates(p, p.point(s, t));
+    REQUIRE(at);
+    CHECK(at->first == Approx(s).margin(1e-9));
+    CHECK(at->second == Approx(t).margin(1e-9));
+  }
+  // Off the plane, or on it but outside its square: none.
+  CHECK_FALSE(sps::plane_coordinates(p, Eigen::Vector3d(0.5, 0.5, 0.6)));
+  CHECK_FALSE(sps::plane_coordinates(p, p.c + 1.5 * p.u));
+  // The opposite-vertex correction scales the c - u half.
+  p.u_neg_scale = 0.5;
+  const auto corner = sps::plane_coordinates(p, p.point(-1.0, -1.0));
+  REQUIRE(corner);
+  CHECK(corner->first == Approx(-1.0));
+  CHECK(corner->second == Approx(-1.0));
 }
 
 TEST_CASE("a careful chooser's choices of a grid's centre bound the estimate's uncertainty",
@@ -755,4 +792,52 @@ TEST_CASE("a search keeps its full perceptual metric in its file and refuses a b
   // Without a scale there is no metric either.
   search.set_perceptual_scale(Eigen::VectorXd());
   CHECK(search.options().perceptual_metric.size() == 0);
+}
+
+TEST_CASE("a plane moved to fit the box keeps the person's estimate as its current best, saved",
+          "[target][search]") {
+  sps::SearchOptions o;
+  o.dims = 3;
+  o.seed = 9;
+  o.threads = 1;
+  o.perceptual_scale = Eigen::Vector3d(100.0, 100.0, 100.0);
+  o.min_plane_length = 20.0;
+  o.plane_axes = sps::PlaneAxes::kTargetUncertainty;
+  sps::PlaneSearch search(o);
+  sps::Population population = model_for(o.perceptual_scale).population;
+  population.sd = Eigen::Vector3d(0.4, 0.3, 0.2);
+  search.set_population(population);
+  REQUIRE(search.use_visible_first_plane());
+  // A person who wants a design near a corner of the box (a photo edit near +95 on three
+  // sliders), each time preferring it over what the plane shows.
+  const Eigen::Vector3d chosen(0.98, 0.97, 0.98);
+  for (int plane = 0; plane < 4; ++plane) {
+    search.submit(chosen);
+    // The current best is on the plane, at a cell of its first grid, whatever the centre.
+    const sps::Plane& next = search.current_plane();
+    CHECK((search.x_plus() - next.best()).norm() < 1e-12);
+    CHECK(std::abs(next.best_s - std::round(next.best_s)) < 1e-9);
+    CHECK(std::abs(next.best_t - std::round(next.best_t)) < 1e-9);
+  }
+  const Eigen::VectorXd estimate = search.x_plus();
+  CHECK((estimate.array() > 0.8).all());
+  // The population's widest axis runs along coordinate 0, across the near face: its plane
+  // through the estimate is moved by whole cells and keeps the estimate as its current best.
+  REQUIRE(search.replace_with_population_plane());
+  const sps::Plane& p = search.current_plane();
+  CHECK_FALSE(p.best_is_centre());
+  CHECK((p.c - estimate).norm() > 0.05);
+  CHECK((search.x_plus() - estimate).norm() < 1e-9);
+  CHECK(std::abs(p.best_s - std::round(p.best_s)) < 1e-12);
+  CHECK(std::abs(p.best_t - std::round(p.best_t)) < 1e-12);
+  // Saved and read back with it; a file from before the field has the centre; a broken one
+  // is refused.
+  const auto restored = sps::PlaneSearch::from_json(search.to_json());
+  CHECK((restored.x_plus() - estimate).norm() < 1e-9);
+  auto j = nlohmann::json::parse(search.to_json());
+  j["plane"].erase("best_s");
+  j["plane"].erase("best_t");
+  CHECK((sps::PlaneSearch::from_json(j.dump()).x_plus() - p.c).norm() < 1e-12);
+  j["plane"]["best_s"] = 3.0;
+  CHECK_THROWS_WITH(sps::PlaneSearch::from_json(j.dump()), Catch::Contains("best_s"));
 }
