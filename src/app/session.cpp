@@ -325,6 +325,16 @@ bool has_look_alike_pair(const std::vector<sps::GridPoint>& cells, const Pairwis
   return false;
 }
 
+// `base` widened or narrowed about the plane's current best (a cell of the base grid), which
+// stays a cell.
+sps::GridView scaled_about_best(const sps::GridView& base, const sps::Plane& plane, double factor) {
+  sps::GridView view = base;
+  view.spacing *= factor;
+  view.s = plane.best_s + (base.s - plane.best_s) * factor;
+  view.t = plane.best_t + (base.t - plane.best_t) * factor;
+  return view;
+}
+
 // The first grid of a plane as shown: the plane's own square (`base`) where no two cells look
 // alike; otherwise the plane is too small to see (e.g. it runs along directions that barely
 // change the design), so a wider grid, as long as no cell leaves the box; then, as a last
@@ -337,15 +347,7 @@ std::optional<sps::GridView> distinct_first_view(
     const std::function<std::vector<sps::GridPoint>(const sps::GridView&)>& cells_of,
     const PairwiseDistance& distance, double threshold, const sps::Plane& plane) {
   if (!has_look_alike_pair(cells_of(base), distance, threshold)) return base;
-  // Widened or narrowed about the plane's current best (a cell of the base grid), which
-  // stays a cell.
-  const auto scaled = [&](double factor) {
-    sps::GridView view = base;
-    view.spacing *= factor;
-    view.s = plane.best_s + (base.s - plane.best_s) * factor;
-    view.t = plane.best_t + (base.t - plane.best_t) * factor;
-    return view;
-  };
+  const auto scaled = [&](double factor) { return scaled_about_best(base, plane, factor); };
   const auto widen = [&](bool allow_clamped) -> std::optional<sps::GridView> {
     for (double factor : {1.25, 1.5, 2.0, 2.5, 3.0}) {
       const sps::GridView wider = scaled(factor);
@@ -362,6 +364,36 @@ std::optional<sps::GridView> distinct_first_view(
   for (double factor : {0.8, 0.64, 0.5, 0.4}) {
     const sps::GridView narrower = scaled(factor);
     if (!has_look_alike_pair(cells_of(narrower), distance, threshold)) return narrower;
+  }
+  return std::nullopt;
+}
+
+// Where no first grid of the plane about its current best shows n x n different cells: the
+// grid moved by whole cells (the current best another cell of it), at the base spacing or
+// narrower, nearest moves first; nullopt where none does either. Cells clamped onto the box's
+// faces coincide on the far side of a face; moved away from it, the grid shows designs inside.
+std::optional<sps::GridView> distinct_moved_view(
+    const sps::GridView& base, int n,
+    const std::function<std::vector<sps::GridPoint>(const sps::GridView&)>& cells_of,
+    const PairwiseDistance& distance, double threshold, const sps::Plane& plane) {
+  const int half_cells = (n - 1) / 2;
+  for (double factor : {1.0, 0.8, 0.64, 0.5}) {
+    const sps::GridView about_best = scaled_about_best(base, plane, factor);
+    const double half = 0.5 * about_best.spacing * static_cast<double>(n - 1) + 1e-9;
+    for (int moves = 1; moves <= 2 * half_cells; ++moves) {
+      for (int i = -half_cells; i <= half_cells; ++i) {
+        for (int j = -half_cells; j <= half_cells; ++j) {
+          if (std::abs(i) + std::abs(j) != moves) continue;
+          sps::GridView view = about_best;
+          view.s += i * view.spacing;
+          view.t += j * view.spacing;
+          if (std::abs(plane.best_s - view.s) > half || std::abs(plane.best_t - view.t) > half) {
+            continue;
+          }
+          if (!has_look_alike_pair(cells_of(view), distance, threshold)) return view;
+        }
+      }
+    }
   }
   return std::nullopt;
 }
@@ -435,7 +467,18 @@ PlaneVetter Session::plane_vetter() const {
     // The paper's plane for the same choice; where that cannot be told apart either (or the
     // plane was the paper's already), the population's axes through the same centre.
     if (search.replace_uncertainty_plane() && distinct()) return;
-    search.replace_with_population_plane();
+    if (search.replace_with_population_plane() && distinct()) return;
+    // Last, that plane's part where its grid, moved by whole cells, shows n x n different
+    // cells (on 5x5 photo grids near the faces the cells between the 3x3 ones clamped onto
+    // the same colours: docs/benchmarks.md).
+    const sps::Plane& plane = search.current_plane();
+    if (plane.is_line()) return;
+    const auto cells_of = [&](const sps::GridView& view) { return plane_cells(plane, n, view); };
+    if (const auto view =
+            distinct_moved_view(first_view(false, n), n, cells_of, distance, threshold, plane)) {
+      search.replace_with_plane_part(view->s, view->t,
+                                     0.5 * view->spacing * static_cast<double>(n - 1));
+    }
   };
 }
 

@@ -488,6 +488,25 @@ std::optional<std::pair<double, double>> plane_coordinates(const Plane& plane,
   return std::make_pair(std::clamp(s, -1.0, 1.0), std::clamp(t, -1.0, 1.0));
 }
 
+std::optional<Plane> plane_part(const Plane& plane, double s, double t, double half) {
+  if (plane.is_line() || plane.u_neg_scale != 1.0 || !(half > 0.0) || !std::isfinite(half) ||
+      !std::isfinite(s) || !std::isfinite(t)) {
+    return std::nullopt;
+  }
+  const double best_s = (plane.best_s - s) / half;
+  const double best_t = (plane.best_t - t) / half;
+  constexpr double kSlack = 1e-9;
+  if (std::abs(best_s) > 1.0 + kSlack || std::abs(best_t) > 1.0 + kSlack) return std::nullopt;
+  // point() is affine here: the part's (s', t') is the plane's (s + half s', t + half t').
+  Plane part = plane;
+  part.c = plane.point(s, t);
+  part.u = half * plane.u;
+  part.v = half * plane.v;
+  part.best_s = std::clamp(best_s, -1.0, 1.0);
+  part.best_t = std::clamp(best_t, -1.0, 1.0);
+  return part;
+}
+
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei) {
   Plane p;
   p.c = x_plus;

@@ -105,6 +105,13 @@ std::optional<std::pair<double, double>> plane_coordinates(const Plane& plane,
                                                            const Eigen::VectorXd& x,
                                                            double tolerance = 1e-9);
 
+// The part of `plane` around its grid coordinates (s, t), `half` wide in each, as a plane of
+// its own: its square is that part, so its first grid is the grid `plane` shows there, and
+// the current best keeps its place (best_s, best_t in the part's coordinates; it must lie in
+// the part). nullopt for a line, a plane with the opposite-vertex correction (not affine), a
+// non-positive or non-finite `half`, or a part without the current best.
+std::optional<Plane> plane_part(const Plane& plane, double s, double t, double half);
+
 // Sequential line search: the segment x+ -> x_EI, as a plane with v = 0.
 Plane sls_line(const Eigen::VectorXd& x_plus, const Eigen::VectorXd& x_ei);
 

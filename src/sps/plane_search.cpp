@@ -502,6 +502,14 @@ bool PlaneSearch::replace_with_population_plane() {
   return true;
 }
 
+bool PlaneSearch::replace_with_plane_part(double s, double t, double half) {
+  auto part = plane_part(plane_, s, t, half);
+  if (!part) return false;
+  plane_ = *part;
+  uncertainty_plane_ = false;
+  return true;
+}
+
 void PlaneSearch::propose_next_plane(const Eigen::VectorXd& last_choice, bool set_directly) {
   const Eigen::VectorXd best = build_next_plane(last_choice, set_directly);
   // The current best is the point the plane was built around, wherever the construction put

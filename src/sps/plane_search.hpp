@@ -253,6 +253,13 @@ class PlaneSearch {
   // person sees them, slid and shrunk into the box as uncertainty planes are (the first
   // plane's construction, moved to the centre). Returns whether the plane was replaced.
   bool replace_with_population_plane();
+  // The very last resort, where no plane above shows cells a person can tell apart (near the
+  // box's faces cells clamp onto the same designs, and the caller's measure can see less than
+  // the perceptual scale predicts, e.g. a photo's clipped highlights): the current plane's
+  // part around (s, t), `half` wide (sps::plane_part), that the caller found its cells
+  // distinct on. Returns whether the plane was replaced (not for lines, or where the part
+  // does not hold the current best).
+  bool replace_with_plane_part(double s, double t, double half);
   // Sets options().uncertainty_extent and uncertainty_min_lengths for the next planes. Throws
   // std::invalid_argument outside [0.1, 10] and [0, 10].
   void set_uncertainty_size(const UncertaintyPlaneSize& size);

@@ -133,6 +133,14 @@ awk -F, 'NR > 1 { if ($2 <= 0 || $2 > 60) exit 1 }' "$dir/photo.csv" ||
   fail "photo gap outside (0, 60] Delta E: $(cat "$dir/photo.csv")"
 named=$("$bin" simulate --function photo --target warmer-brighter --trials 1 --iterations 2 --quiet)
 grep -q "target warmer-brighter" <<<"$named" || fail "named photo target: $named"
+# The paper's 5x5 grids near the box's faces: this trial's edit (seed 1001) showed look-alike
+# first grids on planes 7, 8 and 10 (cells between the 3x3 ones clamped onto colours a person
+# cannot tell apart) before the session learnt to show the part of the plane where they differ.
+"$bin" simulate --function photo --grid 5 --trials 1 --seed 1001 --iterations 10 --quiet \
+  --csv "$dir/photo5.csv" >/dev/null || fail "photo on 5x5 grids failed"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "duplicate_grids") c = i; next }
+         { if (!c || $c != 0) exit 1 }' "$dir/photo5.csv" ||
+  fail "look-alike grids on 5x5 photo grids: $(cat "$dir/photo5.csv")"
 png="$dir/tiny.png"
 printf '\x89PNG\r\n\x1a\n' >"$png"  # a PNG signature and nothing else
 for args in "--target bogus" "--jnd-delta-e -1" "--grid 4" "--user argmax" \

@@ -366,6 +366,48 @@ TEST_CASE("a point's grid coordinates on a plane", "[plane]") {
   CHECK(corner->second == Approx(-1.0));
 }
 
+TEST_CASE("a part of a plane is the plane's grid there, with the current best in place",
+          "[plane]") {
+  sps::Plane p;
+  p.c = Eigen::Vector3d(0.5, 0.5, 0.5);
+  p.u = Eigen::Vector3d(0.4, 0.0, 0.1);
+  p.v = Eigen::Vector3d(0.0, 0.3, 0.0);
+  p.best_s = 0.0;
+  p.best_t = 1.0;
+  // The part around (0.5, 0.5), half as wide: the plane's quarter with s, t in [0, 1].
+  const auto part = sps::plane_part(p, 0.5, 0.5, 0.5);
+  REQUIRE(part);
+  for (const auto& [s, t] : std::vector<std::pair<double, double>>{
+           {0.0, 0.0}, {-1.0, -1.0}, {1.0, -1.0}, {0.5, 0.25}, {1.0, 1.0}}) {
+    CHECK((part->point(s, t) - p.point(0.5 + 0.5 * s, 0.5 + 0.5 * t)).norm() < 1e-12);
+  }
+  // The current best is the same design, now at the part's (-1, 1).
+  CHECK(part->best_s == Approx(-1.0));
+  CHECK(part->best_t == Approx(1.0));
+  CHECK((part->best() - p.best()).norm() < 1e-12);
+  // A part without the current best, a line, a non-affine plane, a bad width: none.
+  CHECK_FALSE(sps::plane_part(p, -0.5, -0.5, 0.5));
+  CHECK_FALSE(sps::plane_part(p, 0.5, 0.5, 0.0));
+  CHECK_FALSE(sps::plane_part(p, 0.5, 0.5, std::numeric_limits<double>::quiet_NaN()));
+  sps::Plane line = p;
+  line.v = Eigen::Vector3d::Zero();
+  CHECK_FALSE(sps::plane_part(line, 0.0, 0.5, 0.5));
+  sps::Plane corrected = p;
+  corrected.u_neg_scale = 0.5;
+  CHECK_FALSE(sps::plane_part(corrected, 0.5, 0.5, 0.5));
+  // PlaneSearch takes it as its plane, and saves it.
+  sps::SearchOptions options;
+  options.dims = 3;
+  sps::PlaneSearch search(options);
+  const sps::Plane before = search.current_plane();
+  REQUIRE(search.replace_with_plane_part(0.0, 0.0, 0.5));
+  CHECK((search.current_plane().u - 0.5 * before.u).norm() < 1e-12);
+  CHECK((search.x_plus() - before.best()).norm() < 1e-12);
+  const sps::PlaneSearch loaded = sps::PlaneSearch::from_json(search.to_json());
+  CHECK((loaded.current_plane().u - search.current_plane().u).norm() < 1e-12);
+  CHECK_FALSE(search.replace_with_plane_part(0.9, 0.9, 0.05));
+}
+
 TEST_CASE("a careful chooser's choices of a grid's centre bound the estimate's uncertainty",
           "[target]") {
   // Grids in coordinates 0 and 1, cells 30 mm apart (10 temperatures: the softmax is
