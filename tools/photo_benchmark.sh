@@ -114,8 +114,12 @@ clean = sum(1 for r in sps_rows if max(float(x["duplicate_grids"]) for x in r.va
 fallback = ["A plane whose first grid no widening or narrowing separates gives way to the",
             "paper's plane for the same choice, and where that cannot be told apart either (or",
             "was the paper's already) to a plane through the same centre along the population's",
-            "principal axes (`sps::PlaneSearch::replace_with_population_plane`); the paper's",
-            "planes and random planes have nothing to fall back on."]
+            "principal axes (`sps::PlaneSearch::replace_with_population_plane`), then along the",
+            "other pairs of its four most uncertain axes. Where even those show look-alikes (on",
+            "5x5 grids near the box's faces, where colours clip), and for",
+            "the paper's and random planes, the session takes the part of the plane whose grid,",
+            "moved by whole cells and narrowed where needed, shows different cells, the current",
+            "best among them (`replace_with_plane_part`)."]
 if clean == len(sps_rows):
     looks = ["Look-alike grids: SPS as the window runs it shows none on any of the four targets.",
              *fallback, ""]

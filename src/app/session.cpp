@@ -467,7 +467,17 @@ PlaneVetter Session::plane_vetter() const {
     // The paper's plane for the same choice; where that cannot be told apart either (or the
     // plane was the paper's already), the population's axes through the same centre.
     if (search.replace_uncertainty_plane() && distinct()) return;
-    if (search.replace_with_population_plane() && distinct()) return;
+    if (search.replace_with_population_plane()) {
+      if (distinct()) return;
+      // The other pairs of the population's four most uncertain axes through the same centre:
+      // they vary other parameters, which may not clip where these do (5x5 photo grids, 20
+      // trials: mean gap at plane 15 2.93 -> 2.72 against going straight to the part below).
+      constexpr int kAxisPairs = 6;
+      for (int pair = 1; pair < kAxisPairs; ++pair) {
+        if (search.replace_with_population_plane(pair) && distinct()) return;
+      }
+      search.replace_with_population_plane(0);
+    }
     // Last, that plane's part where its grid, moved by whole cells, shows n x n different
     // cells (on 5x5 photo grids near the faces the cells between the 3x3 ones clamped onto
     // the same colours: docs/benchmarks.md).

@@ -394,7 +394,7 @@ double closest_clamped_cells(const Plane& p, const PerceptualMetric& metric, dou
 
 std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
                                        const PerceptualMetric& metric, double extent,
-                                       double min_length) {
+                                       double min_length, int axes_pair) {
   const Eigen::Index d = c.size();
   if (covariance.rows() != d || covariance.cols() != d || metric.dims() != d) {
     throw std::invalid_argument("uncertainty_plane: the covariance and metric need " +
@@ -413,8 +413,20 @@ std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::Ma
   };
   Plane p;
   p.c = c;
-  p.u = axis(d - 1);
-  p.v = d > 1 ? axis(d - 2) : Eigen::VectorXd(Eigen::VectorXd::Zero(d));
+  // The pair of principal axes, ranked by how uncertain the estimate is along them as seen:
+  // 0 the two most uncertain, then (1st, 3rd), (2nd, 3rd), (1st, 4th), ...
+  int first = 0, second = 1;
+  for (int k = 0; k < axes_pair; ++k) {
+    if (first + 1 < second) {
+      ++first;
+    } else {
+      first = 0;
+      ++second;
+    }
+  }
+  if (axes_pair < 0 || (d > 1 && second >= d) || (d == 1 && axes_pair > 0)) return std::nullopt;
+  p.u = axis(d - 1 - first);
+  p.v = d > 1 ? axis(d - 1 - second) : Eigen::VectorXd(Eigen::VectorXd::Zero(d));
   // The plane may reach beyond the box (its cells are clamped when shown): centred on the
   // estimate, with the first grid's extremes far apart, it finds the design in mind sooner
   // than one fitted into the box (body benchmark). But near a face of the box clamped cells

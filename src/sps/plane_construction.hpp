@@ -95,9 +95,11 @@ Plane random_plane(const Eigen::VectorXd& x_plus, std::mt19937_64& rng);
 // cells are clamped when shown), shrunk until the cells of its first 3x3 grid, clamped, are
 // half of min_length apart where it can be; none where even the best shrink leaves two cells
 // closer than a third of min_length (the caller builds another kind of plane).
+// `axes_pair` 0 takes the two most uncertain axes; 1, 2, 3, ... the next pairs in the order
+// (1st, 3rd), (2nd, 3rd), (1st, 4th), (2nd, 4th), ...; none beyond the last pair.
 std::optional<Plane> uncertainty_plane(const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
                                        const PerceptualMetric& metric, double extent,
-                                       double min_length);
+                                       double min_length, int axes_pair = 0);
 
 // The grid coordinates (s, t) of x on the plane (Plane::point(s, t) == x within `tolerance`
 // in box units, inside [-1, 1]^2), or nullopt where x is not on the plane's square.

@@ -483,19 +483,20 @@ bool PlaneSearch::replace_uncertainty_plane() {
   return true;
 }
 
-std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c) const {
+std::optional<Plane> PlaneSearch::population_plane(const Eigen::VectorXd& c, int axes_pair) const {
   const Population& population = options_.population;
   if (hold_ || options_.method != Method::kSps ||
       options_.plane_axes != PlaneAxes::kTargetUncertainty || population.empty() || !metric_) {
     return std::nullopt;
   }
   return uncertainty_plane(c, population_covariance(population), *metric_,
-                           options_.uncertainty_extent, uncertainty_min_side_of(options_));
+                           options_.uncertainty_extent, uncertainty_min_side_of(options_),
+                           axes_pair);
 }
 
-bool PlaneSearch::replace_with_population_plane() {
+bool PlaneSearch::replace_with_population_plane(int axes_pair) {
   if (plane_.is_line()) return false;
-  auto plane = population_plane(plane_.best());
+  auto plane = population_plane(plane_.best(), axes_pair);
   if (!plane) return false;
   plane_ = *plane;
   uncertainty_plane_ = false;

@@ -251,8 +251,9 @@ class PlaneSearch {
   // the estimate had no uncertainty plane, can be one whose cells clamp onto the same faces
   // of the box), a plane through the same centre along the population's principal axes as a
   // person sees them, slid and shrunk into the box as uncertainty planes are (the first
-  // plane's construction, moved to the centre). Returns whether the plane was replaced.
-  bool replace_with_population_plane();
+  // plane's construction, moved to the centre). `axes_pair` picks other pairs of those axes
+  // (sps::uncertainty_plane). Returns whether the plane was replaced.
+  bool replace_with_population_plane(int axes_pair = 0);
   // The very last resort, where no plane above shows cells a person can tell apart (near the
   // box's faces cells clamp onto the same designs, and the caller's measure can see less than
   // the perceptual scale predicts, e.g. a photo's clipped highlights): the current plane's
@@ -301,7 +302,7 @@ class PlaneSearch {
   // like the uncertainty planes), for the window's planes (SPS, PlaneAxes::kTargetUncertainty,
   // a population and a perceptual scale, no hold); nullopt otherwise or where no plane of
   // told-apart cells fits.
-  std::optional<Plane> population_plane(const Eigen::VectorXd& c) const;
+  std::optional<Plane> population_plane(const Eigen::VectorXd& c, int axes_pair = 0) const;
   std::string rng_state() const;
   void set_rng_state(const std::string& state);
 

@@ -135,7 +135,8 @@ named=$("$bin" simulate --function photo --target warmer-brighter --trials 1 --i
 grep -q "target warmer-brighter" <<<"$named" || fail "named photo target: $named"
 # The paper's 5x5 grids near the box's faces: this trial's edit (seed 1001) showed look-alike
 # first grids on planes 7, 8 and 10 (cells between the 3x3 ones clamped onto colours a person
-# cannot tell apart) before the session learnt to show the part of the plane where they differ.
+# cannot tell apart) before the session's last fallbacks: the population's other axis pairs,
+# then the part of the plane where the cells differ.
 "$bin" simulate --function photo --grid 5 --trials 1 --seed 1001 --iterations 10 --quiet \
   --csv "$dir/photo5.csv" >/dev/null || fail "photo on 5x5 grids failed"
 awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "duplicate_grids") c = i; next }

@@ -293,6 +293,18 @@ TEST_CASE("an uncertainty plane spans the estimate's least certain directions as
       *sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 12.0);
   CHECK(longer.u.cwiseProduct(scale).norm() == Approx(12.0));
   CHECK(longer.v.cwiseProduct(scale).norm() == Approx(12.0));
+  // Other pairs of axes: (1st, 3rd) is coordinates 2 and 1, (2nd, 3rd) 0 and 1; no 4th axis.
+  const auto second = sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 1.0, 1);
+  REQUIRE(second);
+  CHECK(std::abs(second->u(0)) + std::abs(second->u(1)) < 1e-9);
+  CHECK(std::abs(second->v(0)) + std::abs(second->v(2)) < 1e-9);
+  CHECK(second->v.cwiseProduct(scale).norm() == Approx(2.0 * std::sqrt(3.6)));
+  const auto third = sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 1.0, 2);
+  REQUIRE(third);
+  CHECK(std::abs(third->u(1)) + std::abs(third->u(2)) < 1e-9);
+  CHECK(std::abs(third->v(0)) + std::abs(third->v(2)) < 1e-9);
+  CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 1.0, 3));
+  CHECK_FALSE(sps::uncertainty_plane(c, cov, sps::PerceptualMetric(scale), 2.0, 1.0, -1));
 }
 
 TEST_CASE("an uncertainty plane near a face of the box keeps its clamped cells apart",
