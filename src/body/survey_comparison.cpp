@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "body/measurements.hpp"
 
@@ -14,11 +15,27 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double percentile(const std::vector<double>& sorted, double p) {
-  const double pos = p * static_cast<double>(sorted.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const auto hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (pos - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+// The p-quantile of values sorted with their weights: each value stands at the middle of its
+// share of the cumulative weight, rescaled so that the first stands at 0 and the last at 1, and
+// quantiles between two values are interpolated. With equal weights the k-th of n stands at
+// k / (n - 1), the plain sample quantile.
+double percentile(const std::vector<std::pair<double, double>>& sorted, double p) {
+  if (sorted.size() == 1) return sorted[0].first;
+  double total = 0.0;
+  for (const auto& v : sorted) total += v.second;
+  const double first = 0.5 * sorted.front().second;
+  const double span = total - first - 0.5 * sorted.back().second;
+  double before = 0.0;
+  for (std::size_t k = 0; k + 1 < sorted.size(); ++k) {
+    const double lo = (before + 0.5 * sorted[k].second - first) / span;
+    const double hi = (before + sorted[k].second + 0.5 * sorted[k + 1].second - first) / span;
+    if (p <= hi || k + 2 == sorted.size()) {
+      const double t = hi > lo ? std::clamp((p - lo) / (hi - lo), 0.0, 1.0) : 0.0;
+      return sorted[k].first + t * (sorted[k + 1].first - sorted[k].first);
+    }
+    before += sorted[k].second;
+  }
+  return sorted.back().first;
 }
 
 // The tool's value of a measure for one body (ratios from the girths).
@@ -46,24 +63,44 @@ double survey_value(const SurveyMeasure& measure, const SurveyTable& table, Eige
 }
 
 Distribution distribution_of(std::vector<double> values) {
-  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }),
-               values.end());
+  return distribution_of(values, std::vector<double>(values.size(), 1.0));
+}
+
+Distribution distribution_of(const std::vector<double>& values,
+                             const std::vector<double>& weights) {
+  if (values.size() != weights.size()) {
+    throw std::invalid_argument("distribution_of: values and weights differ in length");
+  }
+  std::vector<std::pair<double, double>> kept;
+  kept.reserve(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!(weights[i] > 0.0) || !std::isfinite(weights[i])) {
+      throw std::invalid_argument("distribution_of: weights must be positive and finite");
+    }
+    if (!std::isnan(values[i])) kept.emplace_back(values[i], weights[i]);
+  }
   Distribution d;
-  d.count = static_cast<int>(values.size());
-  if (values.empty()) {
+  d.count = static_cast<int>(kept.size());
+  if (kept.empty()) {
     d.mean = d.sd = d.p5 = d.p50 = d.p95 = kNaN;
     return d;
   }
-  double sum = 0.0;
-  for (const double v : values) sum += v;
-  d.mean = sum / static_cast<double>(values.size());
+  double w = 0.0, w2 = 0.0, sum = 0.0;
+  for (const auto& [v, wi] : kept) {
+    w += wi;
+    w2 += wi * wi;
+    sum += wi * v;
+  }
+  d.mean = sum / w;
   double squares = 0.0;
-  for (const double v : values) squares += (v - d.mean) * (v - d.mean);
-  d.sd = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
-  std::sort(values.begin(), values.end());
-  d.p5 = percentile(values, 0.05);
-  d.p50 = percentile(values, 0.50);
-  d.p95 = percentile(values, 0.95);
+  for (const auto& [v, wi] : kept) squares += wi * (v - d.mean) * (v - d.mean);
+  // Reliability weights: with equal weights the denominator is n - 1, the sample SD's.
+  const double dof = w - w2 / w;
+  d.sd = kept.size() > 1 && dof > 0.0 ? std::sqrt(squares / dof) : 0.0;
+  std::sort(kept.begin(), kept.end());
+  d.p5 = percentile(kept, 0.05);
+  d.p50 = percentile(kept, 0.50);
+  d.p95 = percentile(kept, 0.95);
   return d;
 }
 
@@ -105,22 +142,31 @@ std::vector<std::string> survey_columns() {
 }
 
 double correlation_of(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size()) throw std::invalid_argument("correlation_of: lengths differ");
-  double n = 0.0, sx = 0.0, sy = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
-    n += 1.0;
-    sx += x[i];
-    sy += y[i];
+  return correlation_of(x, y, std::vector<double>(x.size(), 1.0));
+}
+
+double correlation_of(const std::vector<double>& x, const std::vector<double>& y,
+                      const std::vector<double>& weights) {
+  if (x.size() != y.size() || x.size() != weights.size()) {
+    throw std::invalid_argument("correlation_of: lengths differ");
   }
-  if (n < 3.0) return kNaN;
-  const double mx = sx / n, my = sy / n;
+  double n = 0.0, w = 0.0, sx = 0.0, sy = 0.0;
+  const auto kept = [&](std::size_t i) { return std::isfinite(x[i]) && std::isfinite(y[i]); };
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!kept(i)) continue;
+    n += 1.0;
+    w += weights[i];
+    sx += weights[i] * x[i];
+    sy += weights[i] * y[i];
+  }
+  if (n < 3.0 || !(w > 0.0)) return kNaN;
+  const double mx = sx / w, my = sy / w;
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
-    sxx += (x[i] - mx) * (x[i] - mx);
-    syy += (y[i] - my) * (y[i] - my);
-    sxy += (x[i] - mx) * (y[i] - my);
+    if (!kept(i)) continue;
+    sxx += weights[i] * (x[i] - mx) * (x[i] - mx);
+    syy += weights[i] * (y[i] - my) * (y[i] - my);
+    sxy += weights[i] * (x[i] - mx) * (y[i] - my);
   }
   return sxx > 0.0 && syy > 0.0 ? sxy / std::sqrt(sxx * syy) : kNaN;
 }
@@ -144,18 +190,24 @@ PopulationComparison compare_with_survey(const Model& model,
       model_values[i].push_back(model_value(measures[i].name, m));
     }
   }
+  // Each table counts as much as the others, whatever its number of people: a model built from
+  // equal numbers of women and men (the neutral one) is compared with the survey reweighted to
+  // equal numbers of each sex, not with ANSUR II's two men to every woman.
+  std::vector<double> survey_weights;
   for (const SurveyTable* table : survey) {
-    out.people += static_cast<int>(table->values.rows());
-    for (Eigen::Index r = 0; r < table->values.rows(); ++r) {
+    const Eigen::Index people = table->values.rows();
+    out.people += static_cast<int>(people);
+    for (Eigen::Index r = 0; r < people; ++r) {
       for (std::size_t i = 0; i < measures.size(); ++i) {
         survey_values[i].push_back(survey_value(measures[i], *table, r));
       }
+      survey_weights.push_back(1.0 / static_cast<double>(people));
     }
   }
   for (std::size_t i = 0; i < measures.size(); ++i) {
     ComparisonRow row;
     row.name = measures[i].name;
-    row.survey = distribution_of(survey_values[i]);
+    row.survey = distribution_of(survey_values[i], survey_weights);
     row.model = distribution_of(model_values[i]);
     row.mean_gap_sd =
         row.survey.sd > 0.0 ? (row.model.mean - row.survey.mean) / row.survey.sd : kNaN;
@@ -168,9 +220,10 @@ PopulationComparison compare_with_survey(const Model& model,
         return measures[k].name != "bmi" && measures[k].name.find('/') == std::string::npos;
       };
       if (!plain(i) || !plain(j)) continue;
-      out.correlations.push_back({measures[i].name, measures[j].name,
-                                  correlation_of(survey_values[i], survey_values[j]),
-                                  correlation_of(model_values[i], model_values[j])});
+      out.correlations.push_back(
+          {measures[i].name, measures[j].name,
+           correlation_of(survey_values[i], survey_values[j], survey_weights),
+           correlation_of(model_values[i], model_values[j])});
     }
   }
   std::stable_sort(out.correlations.begin(), out.correlations.end(),

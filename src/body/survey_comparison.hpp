@@ -17,6 +17,10 @@ struct Distribution {
 };
 // NaN values are skipped; an empty input gives count 0 and NaN statistics.
 Distribution distribution_of(std::vector<double> values);
+// The same with a weight per value (positive and finite; throws otherwise): a weighted mean,
+// the SD with reliability weights and quantiles on the weights' cumulative share. Equal
+// weights give distribution_of(values).
+Distribution distribution_of(const std::vector<double>& values, const std::vector<double>& weights);
 
 // One measurement as the survey takes it and as the tool does.
 struct SurveyMeasure {
@@ -55,9 +59,13 @@ struct PopulationComparison {
 // Pearson's correlation of two equally long series (pairs with a NaN skipped); NaN with fewer
 // than 3 pairs or no spread.
 double correlation_of(const std::vector<double>& x, const std::vector<double>& y);
+// The weighted Pearson's r (a weight per pair; equal weights give the plain one).
+double correlation_of(const std::vector<double>& x, const std::vector<double>& y,
+                      const std::vector<double>& weights);
 
 // `samples` bodies of `model` (first `components` betas ~ N(0, 1), seeded) measured and
-// compared with `survey` (one table or two pooled, e.g. both sexes for the neutral model).
+// compared with `survey` (one table or two pooled, e.g. both sexes for the neutral model; each
+// table then weighs the same, as the neutral model is built from equal numbers of each sex).
 PopulationComparison compare_with_survey(const Model& model,
                                          const std::vector<const SurveyTable*>& survey, int samples,
                                          unsigned seed);

@@ -24,7 +24,8 @@ const char* const kUsage =
     "Compares the built-in body models with the ANSUR II public survey files\n"
     "(ANSUR_II_FEMALE_Public.csv, ANSUR_II_MALE_Public.csv): the female model with the women,\n"
     "the male model with the men and, when both files are given, the neutral model with\n"
-    "everyone. N bodies per model (default 300) with betas ~ N(0, 1) on K components\n"
+    "everyone, each sex weighing the same (the neutral model is built from equal numbers of\n"
+    "women and men). N bodies per model (default 300) with betas ~ N(0, 1) on K components\n"
     "(default 10). Lengths in cm, mass in kg. --models-dir reads DIR/body_{female,male,\n"
     "neutral}.npz (as written by generate-default-model --output-dir) instead of the built-in\n"
     "models.\n";
@@ -121,7 +122,7 @@ int run(int argc, char** argv) {
   }
   if (women && men) {
     print(body::compare_with_survey(model("neutral"), {&*women, &*men}, samples, seed),
-          "ANSUR II women and men pooled");
+          "ANSUR II women and men pooled, each sex weighing the same");
   }
   return 0;
 }

@@ -76,6 +76,66 @@ TEST_CASE("distribution_of gives mean, SD and percentiles, skipping NaN", "[surv
   CHECK(std::isnan(body::distribution_of({}).mean));
 }
 
+TEST_CASE("weighted distributions and correlations", "[survey]") {
+  const std::vector<double> v{1.0, 2.0, 3.0, 4.0, 5.0};
+  // Equal weights, whatever their size, give the plain statistics.
+  const auto plain = body::distribution_of(v);
+  const auto same = body::distribution_of(v, std::vector<double>(5, 0.2));
+  CHECK(same.mean == Approx(plain.mean));
+  CHECK(same.sd == Approx(plain.sd));
+  CHECK(same.p5 == Approx(plain.p5));
+  CHECK(same.p50 == Approx(plain.p50));
+  CHECK(same.p95 == Approx(plain.p95));
+  // Two groups weighed equally: three people at 1, 2, 3 and one at 10. The mean is the groups'
+  // mean (2 and 10), the median from the three's largest up, and the SD wider than the three's alone.
+  const auto groups =
+      body::distribution_of({1.0, 2.0, 3.0, 10.0}, {1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0});
+  CHECK(groups.count == 4);
+  CHECK(groups.mean == Approx(6.0));
+  CHECK(groups.p50 >= 3.0);
+  CHECK(groups.p50 < 10.0);
+  CHECK(groups.p5 >= 1.0);
+  CHECK(groups.p95 <= 10.0);
+  CHECK(groups.sd > body::distribution_of({1.0, 2.0, 3.0, 10.0}).sd);
+  // A NaN is skipped with its weight; bad weights are refused.
+  CHECK(body::distribution_of({1.0, std::nan(""), 3.0}, {1.0, 5.0, 1.0}).mean == Approx(2.0));
+  CHECK_THROWS(body::distribution_of({1.0, 2.0}, {1.0, 0.0}));
+  CHECK_THROWS(body::distribution_of({1.0, 2.0}, {1.0, std::nan("")}));
+  CHECK_THROWS(body::distribution_of({1.0, 2.0}, {1.0}));
+  // Correlations: equal weights give Pearson's r; the pairs that break the line weighed
+  // almost nothing leave it nearly perfect.
+  CHECK(body::correlation_of({1, 2, 3, 4}, {1, 3, 2, 4}, {2, 2, 2, 2}) == Approx(0.8));
+  CHECK(body::correlation_of({1, 2, 3, 4, 5}, {1, 3, 2, 4, 5}, {1, 1e-9, 1e-9, 1, 1}) ==
+        Approx(1.0).epsilon(1e-6));
+  CHECK_THROWS(body::correlation_of({1, 2, 3}, {1, 2, 3}, {1, 1}));
+}
+
+TEST_CASE("pooled survey tables weigh the same whatever their size", "[survey]") {
+  // One person 1.60 m tall in one table, three at 1.90 m, 2.00 m and 2.10 m in the other:
+  // pooled, the survey's mean height is the tables' mean, 1.80 m (the people's would be 1.90).
+  const std::string head =
+      "stature,weightkg,chestcircumference,waistcircumference,"
+      "buttockcircumference,biacromialbreadth,crotchheight,acromionradialelength,"
+      "radialestylionlength,neckcircumference,bideltoidbreadth,"
+      "bicepscircumferenceflexed,thighcircumference,calfcircumference\n";
+  const std::string rest = ",800,1000,900,1000,400,800,330,260,400,500,350,600,400\n";
+  const auto one =
+      body::read_survey_csv(write_csv("one.csv", head + "1600" + rest), body::survey_columns());
+  const auto three = body::read_survey_csv(
+      write_csv("three.csv", head + "1900" + rest + "2000" + rest + "2100" + rest),
+      body::survey_columns());
+  const auto model = body::load_builtin_model("neutral", 10);
+  const auto c = body::compare_with_survey(model, {&one, &three}, 4, 3);
+  CHECK(c.people == 4);
+  REQUIRE(c.rows[0].name == "height");
+  CHECK(c.rows[0].survey.mean == Approx(1.80));
+  CHECK(c.rows[0].survey.count == 4);
+  // Every other measure is the same for all four people.
+  CHECK(c.rows[1].name == "mass");
+  CHECK(c.rows[1].survey.mean == Approx(80.0));
+  CHECK(c.rows[1].survey.sd == Approx(0.0).margin(1e-9));
+}
+
 TEST_CASE("a model's population is compared with the survey measure by measure", "[survey]") {
   // Two surveyed people 2.00 m and 2.10 m tall: the built-in model's bodies are shorter, so
   // the height gap is negative and large; every measure has a row.
