@@ -150,6 +150,11 @@ double correlation_of(const std::vector<double>& x, const std::vector<double>& y
   if (x.size() != y.size() || x.size() != weights.size()) {
     throw std::invalid_argument("correlation_of: lengths differ");
   }
+  for (const double wi : weights) {
+    if (!(wi > 0.0) || !std::isfinite(wi)) {
+      throw std::invalid_argument("correlation_of: weights must be positive and finite");
+    }
+  }
   double n = 0.0, w = 0.0, sx = 0.0, sy = 0.0;
   const auto kept = [&](std::size_t i) { return std::isfinite(x[i]) && std::isfinite(y[i]); };
   for (std::size_t i = 0; i < x.size(); ++i) {

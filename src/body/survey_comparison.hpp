@@ -59,7 +59,8 @@ struct PopulationComparison {
 // Pearson's correlation of two equally long series (pairs with a NaN skipped); NaN with fewer
 // than 3 pairs or no spread.
 double correlation_of(const std::vector<double>& x, const std::vector<double>& y);
-// The weighted Pearson's r (a weight per pair; equal weights give the plain one).
+// The weighted Pearson's r (a weight per pair, positive and finite, else it throws; equal
+// weights give the plain one).
 double correlation_of(const std::vector<double>& x, const std::vector<double>& y,
                       const std::vector<double>& weights);
 

@@ -87,7 +87,8 @@ TEST_CASE("weighted distributions and correlations", "[survey]") {
   CHECK(same.p50 == Approx(plain.p50));
   CHECK(same.p95 == Approx(plain.p95));
   // Two groups weighed equally: three people at 1, 2, 3 and one at 10. The mean is the groups'
-  // mean (2 and 10), the median from the three's largest up, and the SD wider than the three's alone.
+  // mean (2 and 10), the median from the three's largest up, and the SD wider than the three's
+  // alone.
   const auto groups =
       body::distribution_of({1.0, 2.0, 3.0, 10.0}, {1.0 / 3, 1.0 / 3, 1.0 / 3, 1.0});
   CHECK(groups.count == 4);
@@ -108,6 +109,7 @@ TEST_CASE("weighted distributions and correlations", "[survey]") {
   CHECK(body::correlation_of({1, 2, 3, 4, 5}, {1, 3, 2, 4, 5}, {1, 1e-9, 1e-9, 1, 1}) ==
         Approx(1.0).epsilon(1e-6));
   CHECK_THROWS(body::correlation_of({1, 2, 3}, {1, 2, 3}, {1, 1}));
+  CHECK_THROWS(body::correlation_of({1, 2, 3}, {1, 2, 3}, {1, -1, 1}));
 }
 
 TEST_CASE("pooled survey tables weigh the same whatever their size", "[survey]") {
