@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "body/measurements.hpp"
@@ -36,6 +37,15 @@ double percentile(const std::vector<std::pair<double, double>>& sorted, double p
     before += sorted[k].second;
   }
   return sorted.back().first;
+}
+
+// Weighted statistics take positive, finite weights only.
+void require_weights(const std::vector<double>& weights, const char* who) {
+  for (const double w : weights) {
+    if (!(w > 0.0) || !std::isfinite(w)) {
+      throw std::invalid_argument(std::string(who) + ": weights must be positive and finite");
+    }
+  }
 }
 
 // The tool's value of a measure for one body (ratios from the girths).
@@ -71,12 +81,10 @@ Distribution distribution_of(const std::vector<double>& values,
   if (values.size() != weights.size()) {
     throw std::invalid_argument("distribution_of: values and weights differ in length");
   }
+  require_weights(weights, "distribution_of");
   std::vector<std::pair<double, double>> kept;
   kept.reserve(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!(weights[i] > 0.0) || !std::isfinite(weights[i])) {
-      throw std::invalid_argument("distribution_of: weights must be positive and finite");
-    }
     if (!std::isnan(values[i])) kept.emplace_back(values[i], weights[i]);
   }
   Distribution d;
@@ -150,11 +158,7 @@ double correlation_of(const std::vector<double>& x, const std::vector<double>& y
   if (x.size() != y.size() || x.size() != weights.size()) {
     throw std::invalid_argument("correlation_of: lengths differ");
   }
-  for (const double wi : weights) {
-    if (!(wi > 0.0) || !std::isfinite(wi)) {
-      throw std::invalid_argument("correlation_of: weights must be positive and finite");
-    }
-  }
+  require_weights(weights, "correlation_of");
   double n = 0.0, w = 0.0, sx = 0.0, sy = 0.0;
   const auto kept = [&](std::size_t i) { return std::isfinite(x[i]) && std::isfinite(y[i]); };
   for (std::size_t i = 0; i < x.size(); ++i) {
