@@ -504,15 +504,12 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
   }
   int waist_i = -1;
   double waist = std::numeric_limits<double>::infinity();
-  for (int i = 112; i <= 134 && (bands & (kWaistBand | kHipsBand)) != 0;
-       ++i) {  // waist: min in [0.56, 0.67] H
+  for (int i = 112; i <= 134 && (bands & kWaistBand) != 0; ++i) {  // waist: min in [0.56, 0.67] H
     const double g = girth_at(i);
     if (g > 0.0 && g < waist) waist = g, waist_i = i;
   }
   if (waist_i >= 0) m.waist = waist, m.waist_height = H * waist_i / steps;
-  const int hip_top = waist_i >= 0 ? waist_i : 120;
-  for (int i = 90; i <= hip_top && (bands & kHipsBand) != 0;
-       ++i) {  // hips: max from 0.45 H up to the waist
+  for (int i = 90; i <= 110 && (bands & kHipsBand) != 0; ++i) {  // hips: max in [0.45, 0.55] H
     const double g = girth_at(i);
     if (g > m.hips) m.hips = g, m.hips_height = H * i / steps;
   }

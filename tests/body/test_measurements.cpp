@@ -60,7 +60,8 @@ TEST_CASE("measure: a cylinder of known circumference", "[measurements]") {
   CHECK(res.chest_height >= 0.65 * 1.75 - 1e-9);
   CHECK(res.chest_height <= 0.75 * 1.75 + 1e-9);
   CHECK(res.waist_height <= 0.67 * 1.75 + 1e-9);
-  CHECK(res.hips_height <= res.waist_height);
+  CHECK(res.hips_height >= 0.45 * 1.75 - 1e-9);
+  CHECK(res.hips_height <= 0.55 * 1.75 + 1e-9);
 
   // Any betas: radius x 1.25 and height x 0.9 scale the readings accordingly.
   Eigen::VectorXf betas(2);
@@ -103,6 +104,37 @@ TEST_CASE("measure: landmarks follow the tailoring definitions on a shaped torso
   CHECK(res.chest == Approx(polygon_girth(radius_at(0.70), 64)).epsilon(2e-3));
   CHECK(res.waist == Approx(polygon_girth(radius_at(0.60), 64)).epsilon(2e-3));
   CHECK(res.hips == Approx(polygon_girth(radius_at(0.52), 64)).epsilon(2e-3));
+}
+
+TEST_CASE("measure: a belly larger than the seat gives a waist larger than the hips",
+          "[measurements]") {
+  // An apple-shaped trunk: the body of revolution widens from the seat (0.50 H) up to a belly
+  // whose narrowest girth in the waist's range (0.56-0.67 H) is still larger than the seat's.
+  // The hips stay the seat's girth, not the belly's (9% of ANSUR II's men are built so).
+  fixtures::Cylinder c;
+  c.rings = 201;
+  c.segments = 64;
+  c.height = 1.0;
+  c.base_y = 0.0;
+  auto arrays = fixtures::cylinder_model(c);
+  auto& vt = arrays["v_template"].values;
+  auto radius_at = [](double t) {
+    return 0.15 + 0.01 * std::exp(-std::pow((t - 0.50) / 0.03, 2)) +
+           0.04 * std::exp(-std::pow((t - 0.62) / 0.08, 2));
+  };
+  for (std::size_t v = 0; v < vt.size() / 3; ++v) {
+    const double s = radius_at(vt[3 * v + 1]) / 0.15;
+    vt[3 * v] *= s;
+    vt[3 * v + 2] *= s;
+  }
+  const auto path = fixtures::scratch_dir("measure-apple") / "apple.npz";
+  fixtures::write_npz(path, fixtures::encode_model(arrays));
+  const auto res = body::measure(body::load_model(path, 2), Eigen::VectorXf());
+  CHECK(res.waist > res.hips + 0.02);
+  CHECK(res.hips_height >= 0.45 - 1e-9);
+  CHECK(res.hips_height <= 0.55 + 1e-9);
+  CHECK(res.hips == Approx(polygon_girth(radius_at(res.hips_height), 64)).epsilon(2e-3));
+  CHECK(res.hips < polygon_girth(radius_at(0.62), 64) - 0.05);
 }
 
 TEST_CASE("measure: an arm beside the torso is not part of the girth", "[measurements]") {
@@ -474,6 +506,7 @@ TEST_CASE("measure: one girth band alone reads the same as all bands", "[measure
   CHECK(waist.chest == 0.0);
   const auto hips = body::measure(model, mesh, true, body::kHipsBand);
   CHECK(hips.hips == Approx(all.hips).epsilon(1e-12));
+  CHECK(hips.waist == 0.0);  // the hips' band no longer needs the waist's slice
   CHECK(hips.height == Approx(all.height).epsilon(1e-12));
 }
 

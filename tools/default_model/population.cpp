@@ -371,10 +371,10 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
     // (Below the crotch only legs and hands are at these heights; the hands are left out.)
     set_field(kThighTop, (1.0 - arm) * crotch_core * gauss(p.y(), 0.78, 0.045) * n);
     // The girth bands at the template's measuring levels (src/body/measurements.hpp: chest the
-    // largest girth in 0.65-0.75 H, waist the smallest in 0.56-0.67 H, hips the largest below
-    // it, neck at 30-70% of neck -> head, thigh 1% of H below the crotch, calf the largest at
-    // 20-50% of knee -> ankle, upper arm at 40-60% of shoulder -> elbow), wide enough to cover
-    // where those levels fall on other bodies.
+    // largest girth in 0.65-0.75 H, waist the smallest in 0.56-0.67 H, hips the largest in
+    // 0.45-0.55 H, neck at 30-70% of neck -> head, thigh 1% of H below the crotch, calf the
+    // largest at 20-50% of knee -> ankle, upper arm at 40-60% of shoulder -> elbow), wide
+    // enough to cover where those levels fall on other bodies.
     {
       const double trunk = std::max(0.0, 1.0 - arm - head - extremity);
       // The offset from one bone's axis, in units of a thigh's radius.
