@@ -25,6 +25,27 @@ double polygon_girth(double r, int n) {
   return 2.0 * n * r * std::sin(kPi / n);
 }
 
+// A body of revolution 1 m tall standing on y = 0: the fixture cylinder (radius 0.15 m, 201
+// rings, 64 segments) with each ring scaled to radius_at(its height).
+template <typename RadiusAt>
+body::Model load_revolution(const std::string& name, RadiusAt radius_at) {
+  fixtures::Cylinder c;
+  c.rings = 201;
+  c.segments = 64;
+  c.height = 1.0;
+  c.base_y = 0.0;
+  auto arrays = fixtures::cylinder_model(c);
+  auto& vt = arrays["v_template"].values;
+  for (std::size_t v = 0; v < vt.size() / 3; ++v) {
+    const double s = radius_at(vt[3 * v + 1]) / c.radius;
+    vt[3 * v] *= s;
+    vt[3 * v + 2] *= s;
+  }
+  const auto path = fixtures::scratch_dir("measure-" + name) / (name + ".npz");
+  fixtures::write_npz(path, fixtures::encode_model(arrays));
+  return body::load_model(path, 2);
+}
+
 body::Model load_cylinder(const fixtures::Cylinder& c, const std::string& name) {
   const auto path = fixtures::scratch_dir("measure-" + name) / (name + ".npz");
   fixtures::write_npz(path, fixtures::encode_model(fixtures::cylinder_model(c)));
@@ -76,28 +97,12 @@ TEST_CASE("measure: landmarks follow the tailoring definitions on a shaped torso
           "[measurements]") {
   // A body of revolution with a bulge at 0.70 H (chest), a pinch at 0.60 H (waist) and a bulge
   // at 0.52 H (hips); each girth must be found at its own height.
-  fixtures::Cylinder c;
-  c.rings = 201;
-  c.segments = 64;
-  c.height = 1.0;
-  c.base_y = 0.0;
-  auto arrays = fixtures::cylinder_model(c);
-  auto& vt = arrays["v_template"].values;
   auto radius_at = [](double t) {
     return 0.15 + 0.03 * std::exp(-std::pow((t - 0.70) / 0.03, 2)) -
            0.04 * std::exp(-std::pow((t - 0.60) / 0.03, 2)) +
            0.05 * std::exp(-std::pow((t - 0.52) / 0.03, 2));
   };
-  for (std::size_t v = 0; v < vt.size() / 3; ++v) {
-    const double y = vt[3 * v + 1];
-    const double s = radius_at(y) / 0.15;
-    vt[3 * v] *= s;
-    vt[3 * v + 2] *= s;
-  }
-  const auto path = fixtures::scratch_dir("measure-shaped") / "shaped.npz";
-  fixtures::write_npz(path, fixtures::encode_model(arrays));
-  const auto m = body::load_model(path, 2);
-  const auto res = body::measure(m, Eigen::VectorXf());
+  const auto res = body::measure(load_revolution("shaped", radius_at), Eigen::VectorXf());
   CHECK(res.chest_height == Approx(0.70).margin(0.006));
   CHECK(res.waist_height == Approx(0.60).margin(0.006));
   CHECK(res.hips_height == Approx(0.52).margin(0.006));
@@ -111,25 +116,11 @@ TEST_CASE("measure: a belly larger than the seat gives a waist larger than the h
   // An apple-shaped trunk: the body of revolution widens from the seat (0.50 H) up to a belly
   // whose narrowest girth in the waist's range (0.56-0.67 H) is still larger than the seat's.
   // The hips stay the seat's girth, not the belly's (9% of ANSUR II's men are built so).
-  fixtures::Cylinder c;
-  c.rings = 201;
-  c.segments = 64;
-  c.height = 1.0;
-  c.base_y = 0.0;
-  auto arrays = fixtures::cylinder_model(c);
-  auto& vt = arrays["v_template"].values;
   auto radius_at = [](double t) {
     return 0.15 + 0.01 * std::exp(-std::pow((t - 0.50) / 0.03, 2)) +
            0.04 * std::exp(-std::pow((t - 0.62) / 0.08, 2));
   };
-  for (std::size_t v = 0; v < vt.size() / 3; ++v) {
-    const double s = radius_at(vt[3 * v + 1]) / 0.15;
-    vt[3 * v] *= s;
-    vt[3 * v + 2] *= s;
-  }
-  const auto path = fixtures::scratch_dir("measure-apple") / "apple.npz";
-  fixtures::write_npz(path, fixtures::encode_model(arrays));
-  const auto res = body::measure(body::load_model(path, 2), Eigen::VectorXf());
+  const auto res = body::measure(load_revolution("apple", radius_at), Eigen::VectorXf());
   CHECK(res.waist > res.hips + 0.02);
   CHECK(res.hips_height >= 0.45 - 1e-9);
   CHECK(res.hips_height <= 0.55 + 1e-9);
