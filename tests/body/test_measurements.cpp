@@ -171,24 +171,10 @@ TEST_CASE("measure: an arm beside the torso is not part of the girth", "[measure
 
 TEST_CASE("measure: the chest search stops where arms join the torso", "[measurements]") {
   // Radius jumps by 60% above 0.72 H, as a slice does where A-posed arms meet the armpits.
-  fixtures::Cylinder c;
-  c.rings = 201;
-  c.segments = 64;
-  c.height = 1.0;
-  c.base_y = 0.0;
-  auto arrays = fixtures::cylinder_model(c);
-  auto& vt = arrays["v_template"].values;
   auto radius_at = [](double t) {
     return (t > 0.7225 ? 0.24 : 0.15) + 0.01 * std::exp(-std::pow((t - 0.70) / 0.02, 2));
   };
-  for (std::size_t v = 0; v < vt.size() / 3; ++v) {
-    const double s = radius_at(vt[3 * v + 1]) / 0.15;
-    vt[3 * v] *= s;
-    vt[3 * v + 2] *= s;
-  }
-  const auto path = fixtures::scratch_dir("measure-armpit") / "armpit.npz";
-  fixtures::write_npz(path, fixtures::encode_model(arrays));
-  const auto res = body::measure(body::load_model(path, 2), Eigen::VectorXf());
+  const auto res = body::measure(load_revolution("armpit", radius_at), Eigen::VectorXf());
   CHECK(res.chest_height == Approx(0.70).margin(0.006));
   CHECK(res.chest == Approx(polygon_girth(0.16, 64)).epsilon(2e-3));
 }
