@@ -73,7 +73,7 @@ lines = [
     f"`tools/fit_survey_benchmark.sh FEMALE.csv MALE.csv build {sample}`: {sample} people of each",
     "sex (seed 1; the neutral model against the women and against the men), the body of the",
     "model nearest to each person's measurements inside the +-3 SD box, with the first 10",
-    "components and with all 16. Each cell: median / 95th percentile of the absolute error",
+    "components and with all 18. Each cell: median / 95th percentile of the absolute error",
     "(cm; kg for mass); \"-\": not run.",
     "",
     header,

@@ -6,7 +6,7 @@ usage: tools/make_archetype_sheet.py FEMALE.csv MALE.csv [EXECUTABLE]
 Each archetype names a sex and, for some measurements, a percentile of that sex in the survey
 (computed here from the CSV files, which are never committed). `sequential-gallery measure
 --model female|male --target ...` solves for the body of the built-in model nearest to the mean
-that meets them, with all 16 components; the body is rendered front and side with the project's headless renderer, and
+that meets them, with all the model's components; the body is rendered front and side with the project's headless renderer, and
 the sheet docs/default-model-archetypes.png is put together with ImageMagick's montage. Prints a
 markdown table of every target and the value reached (for docs/default-model.md); exits 1 if
 an archetype was not reached within 1.5 cm / 1.5 kg on every named measurement.
@@ -34,7 +34,7 @@ COLUMNS = {
 
 # All the components the built-in models keep (the window searches the first 10 by default;
 # several of these builds need the others).
-COMPONENTS = "16"
+COMPONENTS = "18"
 
 ARCHETYPES = [
     ("the paper's Maltese Falcon man: medium height, solidly built, wide shoulders, thick neck",

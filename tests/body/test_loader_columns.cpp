@@ -138,8 +138,9 @@ TEST_CASE("loader columns: SMPL-X's expression columns come from after the shape
 
 TEST_CASE("loader columns: a 55-joint file's variance_share says all its columns are shapes",
           "[loader][columns]") {
-  // The built-in models: SMPL-X's skeleton, 16 shape components and no expressions; their
-  // variance_share (one entry per shape component) keeps them from being read as 8 + 8.
+  // The built-in models: SMPL-X's skeleton, 18 shape components and no expressions; their
+  // variance_share (one entry per shape component) keeps them from being read as shapes and
+  // expressions half and half. This look-alike has 16 (8 + 8 without it).
   fixtures::Cylinder c;
   c.joints = 55;
   c.components = 16;

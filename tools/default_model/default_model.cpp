@@ -172,7 +172,7 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
     leads.row(i) << out.population_statures[i], measures(i, k_weight);
   // The measures together weigh 0.4 of the vertices' variance: as many of the survey's
   // correlations and SDs as at 1 (bench-survey, 10 components: women 61 and 12 of 16 against
-  // 62 and 10, men 60 and 9 against 59 and 10), and the 16 components still span the builds
+  // 62 and 10, men 60 and 9 against 59 and 10), and the kept components still span the builds
   // the vertices' own axes reach (at 1 the paper's Maltese Falcon man's hips stopped 2.5 cm
   // over his).
   SurveyPcaOptions survey_options;
@@ -196,7 +196,7 @@ GeneratedModel build_model(const std::string& name, const Template& tpl,
     Eigen::VectorXd dir = pca.directions.col(k);
     // Sign convention: +beta makes the body larger (direction along the body's own extent).
     if (dir.dot(centroid) < 0) dir = -dir;
-    // Rounded to 2^-20 m (a micrometre): 16 components at 3 SD move a vertex by under 0.03 mm,
+    // Rounded to 2^-20 m (a micrometre): 18 components at 3 SD move a vertex by under 0.03 mm,
     // and the rounded floats deflate to about two thirds, which keeps each file under 5 MB.
     out.shapedirs.col(k) = (std::sqrt(pca.variances[k]) * dir)
                                .unaryExpr([](double c) { return rounded_to_binary_step(c, 20); })
