@@ -473,10 +473,17 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
   measure_limbs(model, mesh, model.faces, H, ymin + m.inseam, bands, m);
   const double ax = mesh.vertices.col(0).cast<double>().mean();
   const double az = mesh.vertices.col(2).cast<double>().mean();
-  const int steps = 200;
+  // Each girth's band of horizontal slices, in 1/200ths of the stature above the soles (the
+  // landmarks of measurements.hpp): the chest the largest girth in 0.65-0.75 H, the waist the
+  // smallest in 0.56-0.67 H, the hips the largest in 0.45-0.55 H.
+  struct SliceBand {
+    int lowest, highest;
+  };
+  constexpr int steps = 200;
+  constexpr SliceBand kChestSlices{130, 150}, kWaistSlices{112, 134}, kHipsSlices{90, 110};
   // Every slice the bands may use (0.45 H to 0.75 H) in one pass over the faces; each girth
   // (its convex hulls) only when a band asks for it, once.
-  constexpr int kLowest = 90, kHighest = 150;
+  constexpr int kLowest = kHipsSlices.lowest, kHighest = kChestSlices.highest;
   std::vector<double> heights;
   for (int i = kLowest; i <= kHighest; ++i) heights.push_back(ymin + H * i / steps);
   const auto crossing = faces_crossing(mesh.vertices, model.faces, heights);
@@ -493,8 +500,8 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
   m.chest_height = m.waist_height = m.hips_height = nan;
 
   double previous = 0.0;
-  for (int i = 130; i <= 150 && (bands & kChestBand) != 0;
-       ++i) {  // chest: max in [0.65, 0.75] H, below the armpits
+  for (int i = kChestSlices.lowest; i <= kChestSlices.highest && (bands & kChestBand) != 0;
+       ++i) {  // below the armpits
     const double g = girth_at(i);
     // Arms that hang close (A-pose) join the torso slice at the armpit: the girth jumps from
     // one slice to the next (0.5% of H apart) by far more than a chest ever grows. Stop there.
@@ -504,12 +511,12 @@ Measurements measure(const Model& model, const BodyMesh& mesh, bool girths, unsi
   }
   int waist_i = -1;
   double waist = std::numeric_limits<double>::infinity();
-  for (int i = 112; i <= 134 && (bands & kWaistBand) != 0; ++i) {  // waist: min in [0.56, 0.67] H
+  for (int i = kWaistSlices.lowest; i <= kWaistSlices.highest && (bands & kWaistBand) != 0; ++i) {
     const double g = girth_at(i);
     if (g > 0.0 && g < waist) waist = g, waist_i = i;
   }
   if (waist_i >= 0) m.waist = waist, m.waist_height = H * waist_i / steps;
-  for (int i = 90; i <= 110 && (bands & kHipsBand) != 0; ++i) {  // hips: max in [0.45, 0.55] H
+  for (int i = kHipsSlices.lowest; i <= kHipsSlices.highest && (bands & kHipsBand) != 0; ++i) {
     const double g = girth_at(i);
     if (g > m.hips) m.hips = g, m.hips_height = H * i / steps;
   }
