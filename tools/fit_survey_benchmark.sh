@@ -47,6 +47,7 @@ doc, out, sample, seconds = sys.argv[1:5]
 runs = [("female", "F", "female model, women"), ("male", "M", "male model, men"),
         ("neutral", "F", "neutral model, women"), ("neutral", "M", "neutral model, men")]
 table, met, units, names = {}, {}, {}, []
+all_counts = set()  # the component counts of the "all" runs, as fit-survey printed them
 # A setting whose files are missing (stopped, or not made yet) shows "-"; a run with none is
 # left out.
 done = lambda model, sex, k: os.path.exists(f"{out}/fit_{model}_{sex}_{k}.csv")
@@ -66,6 +67,10 @@ for model, sex, _ in runs:
         head = open(base + ".txt").readline()
         m = re.search(r"against (\d+) people.*?; (\d+) of them met", head)
         met[(model, sex, k)] = (int(m.group(2)), int(m.group(1))) if m else None
+        if k == "all":
+            m = re.search(r"\((\d+) components\)", head)
+            if m:
+                all_counts.add(m.group(1))
 header = "| measurement | " + " | ".join(f"{label}, {k}" for _, _, label in runs
                                          for k in ("10 components", "all")) + " |"
 lines = [
@@ -73,7 +78,7 @@ lines = [
     f"`tools/fit_survey_benchmark.sh FEMALE.csv MALE.csv build {sample}`: {sample} people of each",
     "sex (seed 1; the neutral model against the women and against the men), the body of the",
     "model nearest to each person's measurements inside the +-3 SD box, with the first 10",
-    "components and with all 18. Each cell: median / 95th percentile of the absolute error",
+    f"components and with all {' / '.join(sorted(all_counts)) or 'of them'}. Each cell: median / 95th percentile of the absolute error",
     "(cm; kg for mass); \"-\": not run.",
     "",
     header,

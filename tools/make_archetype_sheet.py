@@ -32,9 +32,22 @@ COLUMNS = {
     "inseam": (["crotchheight"], 0.1, "cm"),
 }
 
-# All the components the built-in models keep (the window searches the first 10 by default;
-# several of these builds need the others).
-COMPONENTS = "18"
+
+def kept_components(exe, model):
+    """How many shape components a built-in model keeps, from `inspect` (shapedirs' last axis):
+    all of them are used (the window searches the first 10 by default; several of these builds
+    need the others)."""
+    try:
+        out = subprocess.run([exe, "inspect", "--model", model], capture_output=True, text=True)
+    except OSError as e:
+        sys.exit("make_archetype_sheet: cannot run %s (build sequential-gallery first): %s"
+                 % (exe, e))
+    m = re.search(r"shapedirs\s+\S+\s+\(\d+, 3, (\d+)\)", out.stdout)
+    if out.returncode != 0 or not m:
+        sys.exit("make_archetype_sheet: cannot read %s's components from `%s inspect`:\n%s"
+                 % (model, exe, out.stdout + out.stderr))
+    return m.group(1)
+
 
 ARCHETYPES = [
     ("the paper's Maltese Falcon man: medium height, solidly built, wide shoulders, thick neck",
@@ -81,6 +94,7 @@ def main():
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
     os.chdir(root)
     survey = {"female": read_survey(sys.argv[1]), "male": read_survey(sys.argv[2])}
+    components = {sex: kept_components(exe, sex) for sex in survey}
     failed = False
     tiles = []
     rows = ["| archetype | model | measurement: survey percentile, target, reached |",
@@ -94,7 +108,7 @@ def main():
                 values = [sum(float(r[c]) for c in cols) * scale for r in survey[sex]]
                 targets[m] = percentile(values, p)
                 args += ["--target", "%s=%.1f%s" % (m, targets[m], unit)]
-            out = subprocess.run([exe, "measure", "--model", sex, "--components", COMPONENTS] +
+            out = subprocess.run([exe, "measure", "--model", sex, "--components", components[sex]] +
                                  args, capture_output=True, text=True)
             # Out of reach within the solve's own tolerance (half of each measurement's hold
             # tolerance): solve again for the nearest reachable values it names, from the
@@ -115,7 +129,7 @@ def main():
                     if m in wanted:
                         args += ["--target", "%s=%s%s" % (m, value, unit)]
                 out = subprocess.run([exe, "measure", "--model", sex, "--components",
-                                      COMPONENTS] + args, capture_output=True, text=True)
+                                      components[sex]] + args, capture_output=True, text=True)
             if out.returncode != 0:
                 failed = True
                 rows.append("| %s | %s | %s: NOT REACHED (%s) |" % (
@@ -138,7 +152,7 @@ def main():
             pics = []
             for view in ("front", "side"):
                 png = os.path.join(tmp, "%d-%s.png" % (i, view))
-                subprocess.run([exe, "render", "--model", sex, "--components", COMPONENTS,
+                subprocess.run([exe, "render", "--model", sex, "--components", components[sex],
                                 "--betas=" + betas, "--view", view,
                                 "--size", "270x330", "-o", png], check=True,
                                capture_output=True)
