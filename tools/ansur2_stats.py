@@ -52,6 +52,9 @@ MEASURES = [
     ("forearmhandlength", "forearm_hand_length"),
     ("handlength", "hand_length"),
     ("footlength", "foot_length"),
+    # Last, so that the indices above keep their meaning: the breadth across the deltoids, a
+    # person's own target for the generator's deltoid band (survey_calibration.hpp).
+    ("bideltoidbreadth", "bideltoid"),
 ]
 
 

@@ -229,16 +229,31 @@ TEST_CASE("the template is a closed, consistently wound manifold of 8k-20k verti
   CHECK(std::abs(mean[lowest].y()) < 0.01);  // soles on the ground
 }
 
-TEST_CASE("the rig: SMPL-X's 55 joints, convex regressor rows, normalised sparse weights",
-          "[model][generated]") {
+TEST_CASE(
+    "the rig: SMPL-X's 55 joints, convex and fitted regressor rows, normalised sparse weights",
+    "[model][generated]") {
   const GeneratedModel& m = generated();
   const Eigen::Index V = m.v_template.rows();
   REQUIRE(m.j_regressor.rows() == 55);
   REQUIRE(m.j_regressor.cols() == V);
   REQUIRE(m.weights.rows() == V);
   REQUIRE(m.weights.cols() == 55);
-  CHECK(m.j_regressor.minCoeff() >= 0.0f);
-  for (int j = 0; j < 55; ++j) CHECK(m.j_regressor.row(j).sum() == Approx(1.0).margin(1e-4));
+  for (int j = 0; j < 55; ++j) {
+    INFO("joint " << j);
+    CHECK(m.j_regressor.row(j).sum() == Approx(1.0).margin(1e-4));
+    // The shoulders' rows are least squares fitted to the generator's placed joints
+    // (default_model.cpp, fit_shoulder_rows): small signed weights on the skin within 10 cm
+    // of the joint. The others are convex.
+    if (j == 16 || j == 17) {
+      CHECK(m.j_regressor.row(j).minCoeff() > -0.1f);
+      CHECK(m.j_regressor.row(j).maxCoeff() < 0.1f);
+      const Eigen::RowVector3f joint = m.j_regressor.row(j) * m.v_template;
+      for (Eigen::Index v = 0; v < V; ++v)
+        if (m.j_regressor(j, v) != 0.0f) REQUIRE((m.v_template.row(v) - joint).norm() < 0.11f);
+    } else {
+      CHECK(m.j_regressor.row(j).minCoeff() >= 0.0f);
+    }
+  }
   CHECK(m.weights.minCoeff() >= 0.0f);
   std::vector<int> dominant(55, 0);
   for (Eigen::Index v = 0; v < V; ++v) {
@@ -525,9 +540,12 @@ TEST_CASE("each sex's bodies are measured against their own survey draw",
       CHECK(r.rms_after[k] < 0.5 * r.rms_before[k]);
       CHECK(std::abs(r.bias_after[k]) < 0.025);
       // The bands stay soft tissue, not a second body: under 10 cm at a thigh's radius on
-      // average and in spread.
+      // average and in spread (the shoulders' spread: under 10% of the drawn one). The
+      // deltoid's band is narrow and smoothed over the mesh, so that its amplitude is about
+      // 2.3 times what it moves each deltoid (G: 0.4-0.5 of the bideltoid's log per metre): a
+      // spread of 15 cm there is about 1.5 cm of tissue per side.
       CHECK(std::abs(r.knob_mean[k]) < 0.10);
-      CHECK(r.knob_sd[k] < 0.10);
+      CHECK(r.knob_sd[k] < (k == default_model::kKnobDeltoid ? 0.15 : 0.10));
     }
   }
   CHECK(generated("neutral").calibration_reports.size() == 2);

@@ -39,10 +39,10 @@ struct IndependentFactors {
   double limb_fat = 0;           // + fuller limbs for the trunk (peripheral vs central fat)
 };
 
-// Per-person corrections of the girths: the amplitudes (metres of soft tissue at a thigh's
-// radius) of bands round the levels at which the tool measures them, set by
-// calibrate_population (survey_calibration.hpp) so that the girths the tool measures on the
-// body meet the drawn ones.
+// Per-person corrections of the girths and the shoulders' breadths: the amplitudes (metres of
+// soft tissue at a thigh's radius) of bands round the levels at which the tool measures them,
+// and the shoulders' spread, set by calibrate_population (survey_calibration.hpp) so that what
+// the tool measures on the body meets the person's draw.
 enum CrossSectionKnob : int {
   kKnobChest,
   kKnobWaist,
@@ -50,9 +50,15 @@ enum CrossSectionKnob : int {
   kKnobNeck,
   kKnobThigh,
   kKnobCalf,
-  kKnobBiceps,  // steers the upper arm girth
+  kKnobBiceps,   // steers the upper arm girth
+  kKnobDeltoid,  // steers the bideltoid breadth
+  // Not a band: the relative change of the shoulders' spread (the collar and shoulder joints'
+  // distance from the midline), which steers the shoulder width.
+  kKnobShoulder,
   kKnobCount
 };
+// The knobs that are soft-tissue bands (the first ones).
+constexpr int kKnobBands = kKnobShoulder;
 
 // The independent factors in the order they are drawn (each as a member of
 // IndependentFactors), for the code that goes through all of them.
@@ -93,6 +99,8 @@ class DeformationModel {
   Eigen::VectorXd parameters(const Anthropometry& a) const;
   Eigen::VectorXd rest_parameters() const;  // reproduces the template exactly
   Eigen::VectorXd vertices(const Eigen::VectorXd& theta) const { return basis_ * theta; }
+  // Where bone `bone`'s start (its joint, for the limbs) lands with `theta`, soles on y = 0.
+  Vec3 bone_start(const Eigen::VectorXd& theta, int bone) const;
   // Averages the displacement fields (not the bone maps, which reproduce the template) over
   // each vertex's mesh neighbours, `iterations` times: fields that turn quickly across a
   // crease fold the surface there when several components push far along them at once.

@@ -17,8 +17,8 @@ namespace {
 
 // The survey measure each knob's girth is drawn as (cm).
 constexpr std::array<int, kKnobCount> kKnobSurveyMeasure = {
-    k_chest_circ, k_waist_circ, k_buttock_circ, k_neck_circ,
-    k_thigh_circ, k_calf_circ,  k_biceps_circ};
+    k_chest_circ, k_waist_circ,  k_buttock_circ, k_neck_circ, k_thigh_circ,
+    k_calf_circ,  k_biceps_circ, k_bideltoid,    k_biacromial};
 
 constexpr double kDamping = 0.01;
 
@@ -26,7 +26,8 @@ std::array<double, kKnobCount> girths_of(const body::Measurements& m) {
   // The survey's biceps girth is taken flexed and the tool's upper arm relaxed; the survey
   // has no relaxed girth to convert with, so the flexed value is the target (bench-survey
   // compares them the same way).
-  return {m.chest, m.waist, m.hips, m.neck, m.thigh, m.calf, m.upper_arm};
+  return {m.chest, m.waist,     m.hips,      m.neck,          m.thigh,
+          m.calf,  m.upper_arm, m.bideltoid, m.shoulder_width};
 }
 
 class BodyMeasurer {
@@ -104,8 +105,9 @@ void set_knobs(const Eigen::MatrixXd& D, std::vector<Anthropometry>& people) {
 }  // namespace
 
 const std::array<const char*, kKnobCount>& knob_measurement_names() {
-  static const std::array<const char*, kKnobCount> names = {"chest", "waist", "hips",     "neck",
-                                                            "thigh", "calf",  "upper_arm"};
+  static const std::array<const char*, kKnobCount> names = {
+      "chest", "waist",     "hips",      "neck",          "thigh",
+      "calf",  "upper_arm", "bideltoid", "shoulder_width"};
   return names;
 }
 
@@ -233,8 +235,9 @@ CalibrationReport calibrate_population(std::vector<Anthropometry>& people,
 }
 
 std::string describe(const CalibrationReport& report) {
-  std::string s = std::string(report.female ? "female" : "male") + " girths vs their draw (" +
-                  std::to_string(report.sample) + " bodies, " + std::to_string(report.rounds) +
+  std::string s = std::string(report.female ? "female" : "male") +
+                  " girths and breadths vs their draw (" + std::to_string(report.sample) +
+                  " bodies, " + std::to_string(report.rounds) +
                   " rounds), RMS (bias) before -> after:";
   for (int k = 0; k < kKnobCount; ++k) {
     char buffer[96];
@@ -245,12 +248,16 @@ std::string describe(const CalibrationReport& report) {
     s += buffer;
   }
   s += "; bands (mm at a thigh's radius, mean +- SD):";
-  for (int k = 0; k < kKnobCount; ++k) {
+  for (int k = 0; k < kKnobBands; ++k) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, " %s %+.1f +- %.1f", knob_measurement_names()[k],
                   1000 * report.knob_mean[k], 1000 * report.knob_sd[k]);
     s += buffer;
   }
+  char spread[96];
+  std::snprintf(spread, sizeof spread, "; the shoulders' spread %+.1f%% +- %.1f%%",
+                100 * report.knob_mean[kKnobShoulder], 100 * report.knob_sd[kKnobShoulder]);
+  s += spread;
   return s;
 }
 

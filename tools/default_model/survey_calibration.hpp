@@ -7,7 +7,8 @@
 //
 // The calibration measures a sample of the population with the tool's own code
 // (body::measure, the same landmarks as `measure`, holds and `bench-survey`) and sets each
-// person's girth bands (Anthropometry::knobs, soft tissue round each girth's level) to a linear
+// person's knobs (Anthropometry::knobs: soft tissue round each girth's level and round the
+// deltoids, the shoulders' spread for the shoulder width) to a linear
 // function of their survey measures and independent factors, fitted so that the measured
 // girths meet the drawn ones: the correction a person gets depends only on who they are, so
 // the population keeps the survey's joint distribution and stays a linear image of it, and the
