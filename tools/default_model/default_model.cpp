@@ -60,7 +60,7 @@ void shoulder_girdle_weights(const std::vector<Vec3>& vertices, Eigen::MatrixXd&
 // from the survey's biacromial breadth, over 600 bodies). These rows are least squares over
 // 400 bodies of each sex (knobs at 0) of the joint the generator placed, on the vertices within
 // 10 cm of the joint on its side, held to the template's joint and to weights summing to 1 (a
-// strong penalty) and shrunk towards the convex row: r 0.93 / 0.88 (women / men).
+// strong penalty) and shrunk towards the convex row: r about 0.93 / 0.88 (women / men).
 void fit_shoulder_rows(const DeformationModel& deformation, const TriMesh& mesh,
                        const Skeleton& skeleton, std::uint64_t seed, Template& tpl) {
   constexpr double kRadius = 0.10, kShrink = 1e-3;
