@@ -15,19 +15,34 @@ namespace default_model {
 
 namespace {
 
-// The survey measure each knob's girth is drawn as (cm).
-constexpr std::array<int, kKnobCount> kKnobSurveyMeasure = {
-    k_chest_circ, k_waist_circ,  k_buttock_circ, k_neck_circ, k_thigh_circ,
-    k_calf_circ,  k_biceps_circ, k_bideltoid,    k_biacromial};
+// What each knob steers, in CrossSectionKnob's order: the measurement's name, the survey
+// measure it is drawn as (cm) and where body::measure reports it on the body (metres).
+struct KnobTarget {
+  const char* name;
+  int survey_measure;
+  double body::Measurements::*measured;
+};
+// The survey's biceps girth is taken flexed and the tool's upper arm relaxed; the survey has
+// no relaxed girth to convert with, so the flexed value is the target (bench-survey compares
+// them the same way).
+constexpr std::array<KnobTarget, kKnobCount> kKnobTargets = {{
+    {"chest", k_chest_circ, &body::Measurements::chest},
+    {"waist", k_waist_circ, &body::Measurements::waist},
+    {"hips", k_buttock_circ, &body::Measurements::hips},
+    {"neck", k_neck_circ, &body::Measurements::neck},
+    {"thigh", k_thigh_circ, &body::Measurements::thigh},
+    {"calf", k_calf_circ, &body::Measurements::calf},
+    {"upper_arm", k_biceps_circ, &body::Measurements::upper_arm},
+    {"bideltoid", k_bideltoid, &body::Measurements::bideltoid},
+    {"shoulder_width", k_biacromial, &body::Measurements::shoulder_width},
+}};
 
 constexpr double kDamping = 0.01;
 
-std::array<double, kKnobCount> girths_of(const body::Measurements& m) {
-  // The survey's biceps girth is taken flexed and the tool's upper arm relaxed; the survey
-  // has no relaxed girth to convert with, so the flexed value is the target (bench-survey
-  // compares them the same way).
-  return {m.chest, m.waist,     m.hips,      m.neck,          m.thigh,
-          m.calf,  m.upper_arm, m.bideltoid, m.shoulder_width};
+std::array<double, kKnobCount> knob_measures(const body::Measurements& m) {
+  std::array<double, kKnobCount> out{};
+  for (int k = 0; k < kKnobCount; ++k) out[k] = m.*kKnobTargets[k].measured;
+  return out;
 }
 
 class BodyMeasurer {
@@ -54,7 +69,7 @@ class BodyMeasurer {
     for (Eigen::Index v = 0; v < V; ++v)
       for (int c = 0; c < 3; ++c) mesh.vertices(v, c) = static_cast<float>(x[3 * v + c]);
     mesh.joints = model_.j_regressor * mesh.vertices;
-    const std::array<double, kKnobCount> g = girths_of(body::measure(model_, mesh, true));
+    const std::array<double, kKnobCount> g = knob_measures(body::measure(model_, mesh, true));
     std::array<double, kKnobCount> out{};
     for (int k = 0; k < kKnobCount; ++k) out[k] = g[k] > 0.0 ? std::log(g[k]) : std::nan("");
     return out;
@@ -67,7 +82,7 @@ class BodyMeasurer {
 
 std::array<double, kKnobCount> log_targets(const Anthropometry& a) {
   std::array<double, kKnobCount> t{};
-  for (int k = 0; k < kKnobCount; ++k) t[k] = std::log(0.01 * a.m[kKnobSurveyMeasure[k]]);
+  for (int k = 0; k < kKnobCount; ++k) t[k] = std::log(0.01 * a.m[kKnobTargets[k].survey_measure]);
   return t;
 }
 
@@ -105,9 +120,11 @@ void set_knobs(const Eigen::MatrixXd& D, std::vector<Anthropometry>& people) {
 }  // namespace
 
 const std::array<const char*, kKnobCount>& knob_measurement_names() {
-  static const std::array<const char*, kKnobCount> names = {
-      "chest", "waist",     "hips",      "neck",          "thigh",
-      "calf",  "upper_arm", "bideltoid", "shoulder_width"};
+  static const std::array<const char*, kKnobCount> names = [] {
+    std::array<const char*, kKnobCount> n{};
+    for (int k = 0; k < kKnobCount; ++k) n[k] = kKnobTargets[k].name;
+    return n;
+  }();
   return names;
 }
 
