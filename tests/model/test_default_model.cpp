@@ -541,11 +541,12 @@ TEST_CASE("each sex's bodies are measured against their own survey draw",
       CHECK(std::abs(r.bias_after[k]) < 0.025);
       // The bands stay soft tissue, not a second body: under 10 cm at a thigh's radius on
       // average and in spread (the shoulders' spread: under 10% of the drawn one). The
-      // deltoid's band is narrow and smoothed over the mesh, so that its amplitude is about
-      // 2.3 times what it moves each deltoid (G: 0.4-0.5 of the bideltoid's log per metre): a
-      // spread of 15 cm there is about 1.5 cm of tissue per side.
+      // deltoid's band is narrow, smoothed over the mesh and faded over the acromion, so that
+      // its amplitude is far larger than what it moves: a spread of 17 cm there is the
+      // survey's bideltoid spread, about 1.5 cm of tissue per side. (The mass's fat layer is
+      // in metres of tissue: it spreads about 1.5 cm.)
       CHECK(std::abs(r.knob_mean[k]) < 0.10);
-      CHECK(r.knob_sd[k] < (k == default_model::kKnobDeltoid ? 0.15 : 0.10));
+      CHECK(r.knob_sd[k] < (k == default_model::kKnobDeltoid ? 0.20 : 0.10));
     }
   }
   CHECK(generated("neutral").calibration_reports.size() == 2);

@@ -327,15 +327,17 @@ DeformationModel::DeformationModel(const std::vector<Vec3>& template_vertices,
       }
     }
     // Little soft tissue grows over the acromion (a bony landmark under thin skin): the fat,
-    // muscle and upper-arm layers fade by 80% within about 3 cm of where the tool finds it.
-    // With them the measured shoulder width grew by about 4% per SD of muscle and 3% per SD
-    // of fat, which the survey's biacromial breadth does not.
+    // muscle, upper-arm and deltoid layers fade by 80% within about 4.5 cm of where the tool
+    // finds it. With them the measured shoulder width grew by about 4% per SD of muscle and 3%
+    // per SD of fat, which the survey's biacromial breadth does not. (Over 3 cm and without
+    // the deltoid band, the top of the shoulder folded at about one far corner of the box in
+    // 300-500: a thin body's deltoid band pulled in round an acromion that stood still.)
     const double acromion_fade =
-        1.0 -
-        0.8 * std::exp(-(p - acromion_exit[p.x() >= 0 ? 0 : 1]).squaredNorm() / (2 * 0.03 * 0.03));
+        1.0 - 0.8 * std::exp(-(p - acromion_exit[p.x() >= 0 ? 0 : 1]).squaredNorm() /
+                             (2 * 0.045 * 0.045));
     auto set_field = [&](int field, const Vec3& disp) {
-      const bool layer =
-          field == kFatLayer || field == kMuscle || field == kLimbFat || field == kUpperArmBand;
+      const bool layer = field == kFatLayer || field == kMuscle || field == kLimbFat ||
+                         field == kUpperArmBand || field == kDeltoidBand;
       const double f = layer ? acromion_fade : 1.0;
       for (int a = 0; a < 3; ++a) basis_(3 * i + a, kFields + field) = f * disp[a];
     };
@@ -616,7 +618,7 @@ Eigen::VectorXd DeformationModel::parameters(const Anthropometry& a) const {
   t[kFields + kBreastLeft] = t[kFields + kBreastRight] = breast;
   t[kFields + kBelly] = 0.018 * f.fat_distribution;
   t[kFields + kGluteofemoral] = -0.015 * f.fat_distribution;
-  t[kFields + kFatLayer] = 0.0065 * f.fat_layer;
+  t[kFields + kFatLayer] = 0.0065 * f.fat_layer + a.knobs[kKnobMass];
   t[kFields + kMuscle] = 0.009 * f.muscle;
   t[kFields + kPostureShear] = 0.021 * f.posture;
   t[kFields + kHeadForward] = 0.045 * f.head_forward;

@@ -55,6 +55,9 @@ enum CrossSectionKnob : int {
   // Not a band: the relative change of the shoulders' spread (the collar and shoulder joints'
   // distance from the midline), which steers the shoulder width.
   kKnobShoulder,
+  // Not a band: metres of a fat layer over torso and limbs, which steers the mass (the bands
+  // then hold the girths they measure, so the layer fills out what lies between them).
+  kKnobMass,
   kKnobCount
 };
 // The knobs that are soft-tissue bands (the first ones).

@@ -21,6 +21,7 @@ struct KnobTarget {
   const char* name;
   int survey_measure;
   double body::Measurements::*measured;
+  double survey_unit = 0.01;  // the survey's unit in body::measure's (cm -> m; kg stays kg)
 };
 // The survey's biceps girth is taken flexed and the tool's upper arm relaxed; the survey has
 // no relaxed girth to convert with, so the flexed value is the target (bench-survey compares
@@ -35,6 +36,7 @@ constexpr std::array<KnobTarget, kKnobCount> kKnobTargets = {{
     {"upper_arm", k_biceps_circ, &body::Measurements::upper_arm},
     {"bideltoid", k_bideltoid, &body::Measurements::bideltoid},
     {"shoulder_width", k_biacromial, &body::Measurements::shoulder_width},
+    {"mass", k_weight, &body::Measurements::mass, 1.0},
 }};
 
 constexpr double kDamping = 0.01;
@@ -82,7 +84,8 @@ class BodyMeasurer {
 
 std::array<double, kKnobCount> log_targets(const Anthropometry& a) {
   std::array<double, kKnobCount> t{};
-  for (int k = 0; k < kKnobCount; ++k) t[k] = std::log(0.01 * a.m[kKnobTargets[k].survey_measure]);
+  for (int k = 0; k < kKnobCount; ++k)
+    t[k] = std::log(kKnobTargets[k].survey_unit * a.m[kKnobTargets[k].survey_measure]);
   return t;
 }
 
@@ -271,9 +274,12 @@ std::string describe(const CalibrationReport& report) {
                   1000 * report.knob_mean[k], 1000 * report.knob_sd[k]);
     s += buffer;
   }
-  char spread[96];
-  std::snprintf(spread, sizeof spread, "; the shoulders' spread %+.1f%% +- %.1f%%",
-                100 * report.knob_mean[kKnobShoulder], 100 * report.knob_sd[kKnobShoulder]);
+  char spread[160];
+  std::snprintf(spread, sizeof spread,
+                "; the shoulders' spread %+.1f%% +- %.1f%%; the fat layer for the mass %+.1f +- "
+                "%.1f mm",
+                100 * report.knob_mean[kKnobShoulder], 100 * report.knob_sd[kKnobShoulder],
+                1000 * report.knob_mean[kKnobMass], 1000 * report.knob_sd[kKnobMass]);
   s += spread;
   return s;
 }
