@@ -214,8 +214,7 @@ std::vector<GeneratedModel> generate_default_models(const GeneratorOptions& opti
   // (bench-survey, all 18 components: at 0.4 the women's neck SD was 16% short, the men's
   // waist-to-hip ratio's 17%, and 75 of the women's 78 correlations were met; at 0.8 every
   // mean, SD and correlation target is met). The neutral model meets every target with all
-  // 18 at 0.4 and keeps that weight (at 0.65-0.8 its shoulders folded at about one far corner
-  // of the box in 300 before the acromion fade was widened, population.cpp).
+  // 18 at 0.4 and keeps that weight.
   auto model = [&](const std::string& name, const Population& pop, double measure_weight) {
     return build_model(name, tpl, deformation, pop.theta, pop.measures, options.components,
                        measure_weight, options.threads);

@@ -1,4 +1,4 @@
-// The body populations of the default models. Per sex, 29 anthropometric measures (stature,
+// The body populations of the default models. Per sex, 30 anthropometric measures (stature,
 // mass, girths, breadths, depths, segment lengths) are drawn from a correlated normal whose
 // means, SDs and correlations were derived from the ANSUR II public data
 // (tools/ansur2_stats.py -> ansur2_table.inc), plus independent factors that vary in people
